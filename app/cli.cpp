@@ -1,0 +1,275 @@
+#include "cli.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "scene_info.h"
+#include "scene_io.h"
+
+namespace bounce {
+namespace {
+
+bool parse_double(std::string_view text, double& value) {
+  // from_chars has no leading '+'; accept it like strtod does.
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
+void print_warnings(const load_report& report) {
+  for (const std::string& w : report.warnings) std::cerr << "warning: " << w << "\n";
+  if (report.dropped_faces) std::cerr << "warning: " << report.dropped_faces << " degenerate face(s) dropped\n";
+}
+
+// Loads the scene named on the command line (or the embedded default) and
+// applies the camera overrides. Prints the error and returns false on failure.
+bool load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s) {
+  load_report report;
+  if (!load_scene(path.empty() ? default_scene_path : path, s, report)) {
+    std::cerr << "error: " << report.error << "\n";
+    return false;
+  }
+  print_warnings(report);
+  if (camera_overrides) {
+    if (std::string e = apply_camera_options(*camera_overrides, s.view); !e.empty()) {
+      std::cerr << "error: " << e << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string format_vec3(const vec3& v) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
+  return buffer;
+}
+
+int run_info(const std::string& path, bool as_json, double max_edge) {
+  scene s;
+  if (!load_for_command(path, nullptr, s)) return exit_input_error;
+  if (max_edge < 0.0) {
+    std::cerr << "error: --max-edge must be positive\n";
+    return exit_usage;
+  }
+  double edge = max_edge > 0.0 ? max_edge : default_max_edge(s);
+  scene_summary sum;
+  if (std::string e = summarize_scene(s, edge, sum); !e.empty()) {
+    std::cerr << "error: " << s.source << ": " << e << "\n";
+    return exit_input_error;
+  }
+  if (as_json) {
+    nlohmann::json j = {
+        {"scene", s.source},
+        {"surfaces", sum.surfaces},
+        {"polygon_meshes", sum.polygon_meshes},
+        {"spheres", sum.spheres},
+        {"quadrics", sum.quadrics},
+        {"bezier_surfaces", sum.bezier_surfaces},
+        {"bspline_surfaces", sum.bspline_surfaces},
+        {"polygons", sum.polygons},
+        {"patches", sum.patches},
+        {"triangles", sum.triangles},
+        {"max_edge", sum.max_edge},
+        {"materials", sum.materials},
+        {"textures", sum.textures},
+        {"emitting_materials", sum.emitting_materials},
+        {"emitting_surfaces", sum.emitting_surfaces},
+        {"point_lights", sum.point_lights},
+        {"bounds",
+         {{"min", {sum.bounds.min.x, sum.bounds.min.y, sum.bounds.min.z}},
+          {"max", {sum.bounds.max.x, sum.bounds.max.y, sum.bounds.max.z}}}},
+        {"camera",
+         {{"eye", {s.view.eye.x, s.view.eye.y, s.view.eye.z}},
+          {"target", {s.view.target.x, s.view.target.y, s.view.target.z}},
+          {"up", {s.view.up.x, s.view.up.y, s.view.up.z}},
+          {"fov", s.view.fov_y_degrees},
+          {"size", {s.view.width, s.view.height}}}},
+    };
+    std::cout << j.dump(2) << "\n";
+    return exit_ok;
+  }
+  std::cout << "scene:      " << s.source << "\n"
+            << "surfaces:   " << sum.surfaces << " (polygon meshes " << sum.polygon_meshes << ", spheres "
+            << sum.spheres << ", quadrics " << sum.quadrics << ", Bezier " << sum.bezier_surfaces << ", B-spline "
+            << sum.bspline_surfaces << ")\n"
+            << "polygons:   " << sum.polygons << "\n"
+            << "patches:    " << sum.patches << " (Bezier patches + B-spline spans)\n"
+            << "triangles:  " << sum.triangles << " (curved surfaces tessellated at max edge " << sum.max_edge << ")\n"
+            << "materials:  " << sum.materials << " (" << sum.emitting_materials << " emitting), textures "
+            << sum.textures << "\n"
+            << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)\n"
+            << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
+            << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
+            << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";
+  return exit_ok;
+}
+
+// A command whose capability has not been built yet: it still checks its
+// options and scene, then says plainly that it cannot run.
+int run_not_built(const std::string& command, const std::string& issue, const std::string& path,
+                  const camera_options* camera_overrides) {
+  if (camera_overrides || !path.empty()) {
+    scene s;
+    if (!load_for_command(path, camera_overrides, s)) return exit_input_error;
+  }
+  std::cerr << "bounce " << command << ": not built yet (" << issue << ")\n";
+  return exit_not_built;
+}
+
+}  // namespace
+
+std::optional<vec3> parse_vec3(const std::string& text) {
+  vec3 v;
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    std::size_t comma = text.find(',', start);
+    bool last = i == 2;
+    if (last != (comma == std::string::npos)) return std::nullopt;
+    std::string_view part = std::string_view(text).substr(start, last ? std::string::npos : comma - start);
+    if (!parse_double(part, v[i])) return std::nullopt;
+    start = comma + 1;
+  }
+  return v;
+}
+
+std::optional<std::pair<int, int>> parse_size(const std::string& text) {
+  std::size_t x = text.find('x');
+  if (x == std::string::npos) return std::nullopt;
+  int w = 0, h = 0;
+  auto [e1, c1] = std::from_chars(text.data(), text.data() + x, w);
+  auto [e2, c2] = std::from_chars(text.data() + x + 1, text.data() + text.size(), h);
+  if (c1 != std::errc() || e1 != text.data() + x || c2 != std::errc() || e2 != text.data() + text.size())
+    return std::nullopt;
+  return std::pair{w, h};
+}
+
+std::string apply_camera_options(const camera_options& options, camera& view) {
+  camera c = view;
+  const std::pair<const char*, const std::string*> vectors[] = {
+      {"--eye", &options.eye}, {"--target", &options.target}, {"--up", &options.up}};
+  vec3* fields[] = {&c.eye, &c.target, &c.up};
+  for (int i = 0; i < 3; ++i) {
+    if (vectors[i].second->empty()) continue;
+    auto v = parse_vec3(*vectors[i].second);
+    if (!v) return std::string(vectors[i].first) + ": expected x,y,z (three numbers), got '" + *vectors[i].second + "'";
+    *fields[i] = *v;
+  }
+  if (options.fov) {
+    if (!(*options.fov > 0.0 && *options.fov < 180.0)) return "--fov: must be in (0, 180) degrees";
+    c.fov_y_degrees = *options.fov;
+  }
+  if (!options.size.empty()) {
+    auto size = parse_size(options.size);
+    if (!size) return "--size: expected WxH, got '" + options.size + "'";
+    c.width = size->first;
+    c.height = size->second;
+  }
+  // The same rules as a scene file's camera.
+  scene probe;
+  probe.view = c;
+  probe.lights.push_back({vec3(0.0), rgb(1.0)});
+  probe.materials.push_back({});
+  probe.surfaces.push_back({"probe", "", sphere{}});
+  if (std::string e = validate_scene(probe); !e.empty()) return "camera override: " + e;
+  view = c;
+  return {};
+}
+
+void add_solver_options(CLI::App& command, solver_options& o) {
+  command.add_option("--method", o.method, "form-factor method")
+      ->check(CLI::IsMember({"raycast", "hemicube"}))
+      ->capture_default_str();
+  command.add_option("--max-edge", o.max_edge, "longest element edge, scene units (default: diagonal/24)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--until", o.until, "stop when the unshot power fraction falls below this")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  command.add_option("--max-shots", o.max_shots, "stop after this many shots")->check(CLI::NonNegativeNumber);
+  command.add_option("--time", o.seconds, "stop after this many seconds")->check(CLI::NonNegativeNumber);
+  command.add_option("--stats", o.stats_path, "write solver statistics as JSON to this file");
+}
+
+void add_camera_options(CLI::App& command, camera_options& o) {
+  command.add_option("--eye", o.eye, "camera position x,y,z");
+  command.add_option("--target", o.target, "point looked at x,y,z");
+  command.add_option("--up", o.up, "up direction x,y,z");
+  command.add_option("--fov", o.fov, "vertical field of view, degrees");
+  command.add_option("--size", o.size, "image size WxH");
+}
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{
+      "Bounce: progressive radiosity with a live Gouraud view and two-pass ray-traced stills.\n"
+      "SCENE is a .json scene or a bare .obj; without one, the embedded Cornell box."};
+  app.require_subcommand(0, 1);
+
+  std::string scene_path;
+  bool as_json = false;
+  double info_max_edge = 0.0;
+  CLI::App* info = app.add_subcommand("info", "load and validate a scene, print its counts");
+  info->add_option("SCENE", scene_path, "scene file (.json or .obj)");
+  info->add_flag("--json", as_json, "machine-readable output");
+  info->add_option("--max-edge", info_max_edge, "tessellation size for curved surfaces")->check(CLI::PositiveNumber);
+
+  struct solving_command {
+    const char* name;
+    const char* help;
+    const char* issue;
+    CLI::App* app = nullptr;
+    std::string scene;
+    solver_options solver;
+    camera_options camera;
+  };
+  solving_command commands[] = {
+      {"view", "open the interactive window", "the viewer arrives with issue #4", nullptr, {}, {}, {}},
+      {"render",
+       "solve and render the Gouraud view headlessly to PNG/PFM",
+       "headless capture arrives with issue #4",
+       nullptr,
+       {},
+       {},
+       {}},
+      {"trace", "solve, then ray trace a still", "the ray tracer arrives with issue #5", nullptr, {}, {}, {}},
+      {"solve",
+       "run the radiosity solver and report statistics",
+       "the radiosity solver arrives with issue #3",
+       nullptr,
+       {},
+       {},
+       {}},
+  };
+  for (solving_command& c : commands) {
+    c.app = app.add_subcommand(c.name, c.help);
+    c.app->add_option("SCENE", c.scene, "scene file (.json or .obj)");
+    add_solver_options(*c.app, c.solver);
+    add_camera_options(*c.app, c.camera);
+  }
+  CLI::App* bench = app.add_subcommand("bench", "measure speed against error");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? exit_ok : exit_usage;
+  }
+
+  if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
+  for (solving_command& c : commands)
+    if (c.app->parsed()) return run_not_built(c.name, c.issue, c.scene, &c.camera);
+  if (bench->parsed()) return run_not_built("bench", "benchmarks arrive with issue #6", "", nullptr);
+
+  // No subcommand: the main job. Until the viewer and the headless render
+  // exist, show what the default scene holds.
+  std::cout << "bounce: the window and the headless render arrive with issue #4;\n"
+               "showing `bounce info` for the embedded default scene instead.\n\n";
+  return run_info("", false, 0.0);
+}
+
+}  // namespace bounce

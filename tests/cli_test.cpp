@@ -1,0 +1,164 @@
+// The `bounce` command line, run as a user would: exit codes and messages.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "test_files.h"
+
+namespace {
+
+using bounce::testing::scratch_dir;
+using bounce::testing::source_path;
+
+struct run_result {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+run_result run(const std::string& args) {
+  scratch_dir dir(".run");
+  std::string out = dir.path("stdout"), err = dir.path("stderr");
+  std::string command = std::string(BOUNCE_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  int status = std::system(command.c_str());
+  run_result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+TEST(Cli, HelpListsEveryCommand) {
+  run_result r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* command : {"info", "view", "render", "trace", "solve", "bench"})
+    EXPECT_NE(r.out.find(command), std::string::npos) << command;
+  for (const char* command : {"info", "view", "render", "trace", "solve", "bench"})
+    EXPECT_EQ(run(std::string(command) + " --help").code, 0) << command;
+}
+
+TEST(Cli, SolvingCommandsShareOptions) {
+  for (const char* command : {"view", "render", "trace", "solve"}) {
+    run_result r = run(std::string(command) + " --help");
+    for (const char* option : {"--method", "--max-edge", "--until", "--max-shots", "--time", "--stats", "--eye",
+                               "--target", "--up", "--fov", "--size"})
+      EXPECT_NE(r.out.find(option), std::string::npos) << command << " " << option;
+  }
+}
+
+TEST(Cli, NoArgumentsShowsTheDefaultScene) {
+  run_result r = run("");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("embedded:cornell_box/cornell_box.json"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("triangles:"), std::string::npos) << r.out;
+}
+
+TEST(Cli, InfoJsonOnTheCornellBox) {
+  run_result r = run("info " + source_path("assets/cornell_box/cornell_box.json") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["emitting_surfaces"], 1);
+  EXPECT_EQ(j["point_lights"], 0);
+  EXPECT_EQ(j["surfaces"], j["polygon_meshes"]);
+  EXPECT_GE(j["triangles"].get<int>(), 2 * j["polygons"].get<int>() - 8);
+  EXPECT_DOUBLE_EQ(j["bounds"]["max"][1].get<double>(), 548.8);
+  EXPECT_DOUBLE_EQ(j["camera"]["fov"].get<double>(), 39.3);
+}
+
+TEST(Cli, InfoOnEveryShippedScene) {
+  for (const char* path : {"assets/furnace/furnace.json", "assets/whitted/whitted.json", "assets/teapot/teapot.json",
+                           "assets/shapes/shapes.json", "assets/cornell_box/cornell_box.obj"}) {
+    run_result r = run("info --json " + source_path(path));
+    ASSERT_EQ(r.code, 0) << path << ": " << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_GT(j["triangles"].get<int>(), 0) << path;
+    EXPECT_GT(j["emitting_surfaces"].get<int>() + j["point_lights"].get<int>(), 0) << path;
+  }
+  nlohmann::json teapot = nlohmann::json::parse(run("info --json " + source_path("assets/teapot/teapot.json")).out);
+  EXPECT_EQ(teapot["bezier_surfaces"], 1);
+  EXPECT_EQ(teapot["patches"].get<int>() >= 32, true);
+  nlohmann::json whitted = nlohmann::json::parse(run("info --json " + source_path("assets/whitted/whitted.json")).out);
+  EXPECT_EQ(whitted["spheres"], 2);
+  EXPECT_EQ(whitted["point_lights"], 1);
+}
+
+TEST(Cli, FinerMaxEdgeMakesMoreTriangles) {
+  std::string path = source_path("assets/teapot/teapot.json");
+  nlohmann::json coarse = nlohmann::json::parse(run("info --json --max-edge 1 " + path).out);
+  nlohmann::json fine = nlohmann::json::parse(run("info --json --max-edge 0.25 " + path).out);
+  EXPECT_GT(fine["triangles"].get<int>(), coarse["triangles"].get<int>());
+}
+
+TEST(Cli, BadSceneExitsOneNamingTheFile) {
+  run_result r = run("info /nonexistent/box.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("/nonexistent/box.json"), std::string::npos) << r.err;
+
+  scratch_dir dir;
+  std::string path = dir.write("bad.obj", "v 0 0 0\nv 1 x 0\n");
+  r = run("info " + path);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(path + ":2:"), std::string::npos) << r.err;
+}
+
+TEST(Cli, WarningsGoToStandardError) {
+  scratch_dir dir;
+  dir.write("m.mtl", "newmtl e\nKe 1 1 1\nKa 0 0 0\n");
+  std::string path =
+      dir.write("w.obj", "mtllib m.mtl\nusemtl e\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+  run_result r = run("info " + path);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + path + ":8: degenerate face"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1 degenerate face(s) dropped"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'Ka' is not used"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run("frobnicate").code, 2);
+  EXPECT_EQ(run("info --max-edge -1").code, 2);
+  EXPECT_EQ(run("solve --method magic").code, 2);
+  EXPECT_EQ(run("solve --until 2").code, 2);
+  EXPECT_EQ(run("info a.json b.json").code, 2);
+}
+
+TEST(Cli, CameraOverridesAreChecked) {
+  run_result r = run("solve --eye 1,2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--eye: expected x,y,z"), std::string::npos) << r.err;
+  r = run("render --size 640by480");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--size: expected WxH"), std::string::npos) << r.err;
+  r = run("render --size 0x480");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("camera: size 0x480"), std::string::npos) << r.err;
+  r = run("trace --fov 200");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--fov"), std::string::npos) << r.err;
+  r = run("view --eye 278,273,0 --target 278,273,0");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("eye and target are the same point"), std::string::npos) << r.err;
+}
+
+TEST(Cli, CommandsNotBuiltYetSaySoAndFail) {
+  for (const char* command : {"view", "render", "trace", "solve", "bench"}) {
+    run_result r = run(command);
+    EXPECT_EQ(r.code, 3) << command;
+    EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command << ": " << r.err;
+  }
+  // Valid overrides pass the checks and still reach the honest refusal.
+  run_result r = run("solve --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
+  EXPECT_EQ(r.code, 3) << r.err;
+}
+
+}  // namespace
