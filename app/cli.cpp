@@ -9,8 +9,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "patch_mesh.h"
+#include "radiosity.h"
 #include "scene_info.h"
 #include "scene_io.h"
+#include "solve_command.h"
 
 namespace bounce {
 namespace {
@@ -193,7 +196,35 @@ void add_solver_options(CLI::App& command, solver_options& o) {
       ->capture_default_str();
   command.add_option("--max-shots", o.max_shots, "stop after this many shots")->check(CLI::NonNegativeNumber);
   command.add_option("--time", o.seconds, "stop after this many seconds")->check(CLI::NonNegativeNumber);
+  command.add_option("--rays", o.shadow_rays, "raycast: shadow rays per receiver and shooter (rounded up to a square)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command.add_option("--hemicube", o.hemicube_resolution, "hemicube: resolution of the top face")
+      ->check(CLI::Range(8, 4096))
+      ->capture_default_str();
   command.add_option("--stats", o.stats_path, "write solver statistics as JSON to this file");
+}
+
+radiosity_params to_radiosity_params(const solver_options& o) {
+  radiosity_params p;
+  p.form_factors.method = o.method == "hemicube" ? form_factor_method::hemicube : form_factor_method::raycast;
+  p.form_factors.shadow_rays = o.shadow_rays;
+  p.form_factors.hemicube_resolution = o.hemicube_resolution;
+  return p;
+}
+
+mesher_params to_mesher_params(const solver_options& o) {
+  mesher_params p;
+  p.max_edge = o.max_edge;
+  return p;
+}
+
+stop_criterion to_stop_criterion(const solver_options& o) {
+  stop_criterion c;
+  c.unshot_fraction = o.until;
+  c.max_shots = static_cast<std::uint64_t>(o.max_shots);
+  c.seconds = o.seconds;
+  return c;
 }
 
 void add_camera_options(CLI::App& command, camera_options& o) {
@@ -251,6 +282,10 @@ int run_cli(int argc, char** argv) {
     add_solver_options(*c.app, c.solver);
     add_camera_options(*c.app, c.camera);
   }
+  solve_options solve_extra;
+  commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
+  commands[3].app->add_flag("--reference", solve_extra.reference,
+                            "also solve the full matrix (small scenes) and report the difference");
   CLI::App* bench = app.add_subcommand("bench", "measure speed against error");
 
   try {
@@ -261,6 +296,11 @@ int run_cli(int argc, char** argv) {
   }
 
   if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
+  if (commands[3].app->parsed()) {
+    scene s;
+    if (!load_for_command(commands[3].scene, &commands[3].camera, s)) return exit_input_error;
+    return run_solve(s, commands[3].solver, solve_extra);
+  }
   for (solving_command& c : commands)
     if (c.app->parsed()) return run_not_built(c.name, c.issue, c.scene, &c.camera);
   if (bench->parsed()) return run_not_built("bench", "benchmarks arrive with issue #6", "", nullptr);

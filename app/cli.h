@@ -20,6 +20,8 @@ struct solver_options {
   double until = 0.01;             // stop when unshot power falls below this fraction
   long max_shots = 0;              // 0 = no limit
   double seconds = 0.0;            // wall-time limit; 0 = none
+  int shadow_rays = 16;            // raycast: rays per receiver-shooter pair
+  int hemicube_resolution = 256;   // hemicube: pixels along the top face
   std::string stats_path;          // --stats FILE.json
 };
 
@@ -30,6 +32,14 @@ struct camera_options {
 };
 
 void add_solver_options(CLI::App& command, solver_options& options);
+
+struct radiosity_params;
+struct mesher_params;
+struct stop_criterion;
+// The core parameters the options stand for.
+radiosity_params to_radiosity_params(const solver_options& options);
+mesher_params to_mesher_params(const solver_options& options);
+stop_criterion to_stop_criterion(const solver_options& options);
 void add_camera_options(CLI::App& command, camera_options& options);
 
 // Parses "x,y,z" and "WxH"; on failure returns nullopt.

@@ -133,7 +133,7 @@ TEST(Cli, UsageErrorsExitTwo) {
 }
 
 TEST(Cli, CameraOverridesAreChecked) {
-  run_result r = run("solve --eye 1,2");
+  run_result r = run("render --eye 1,2");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("--eye: expected x,y,z"), std::string::npos) << r.err;
   r = run("render --size 640by480");
@@ -151,14 +151,57 @@ TEST(Cli, CameraOverridesAreChecked) {
 }
 
 TEST(Cli, CommandsNotBuiltYetSaySoAndFail) {
-  for (const char* command : {"view", "render", "trace", "solve", "bench"}) {
+  for (const char* command : {"view", "render", "trace", "bench"}) {
     run_result r = run(command);
     EXPECT_EQ(r.code, 3) << command;
     EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command << ": " << r.err;
   }
   // Valid overrides pass the checks and still reach the honest refusal.
-  run_result r = run("solve --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
+  run_result r = run("render --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
   EXPECT_EQ(r.code, 3) << r.err;
+}
+
+TEST(Cli, SolveWritesStatsAndPly) {
+  scratch_dir dir;
+  const std::string stats = dir.path("stats.json"), ply = dir.path("box.ply");
+  run_result r = run("solve --max-edge 150 --until 0.05 --stats " + stats + " --ply " + ply);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("mesh: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("done: "), std::string::npos) << r.out;
+  nlohmann::json j = nlohmann::json::parse(slurp(stats));
+  for (const char* key : {"elements", "vertices", "shots", "unshot_fraction", "seconds", "rays"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_LE(j["unshot_fraction"].get<double>(), 0.05);
+  EXPECT_GT(j["rays"].get<double>(), 0.0);
+  // The PLY header names the radiosity and colour properties, and the
+  // counts match the statistics.
+  const std::string text = slurp(ply);
+  for (const char* line : {"ply", "format ascii 1.0", "property float radiosity_r", "property float radiosity_g",
+                           "property float radiosity_b", "property uchar red", "property uchar green",
+                           "property uchar blue", "end_header"})
+    EXPECT_NE(text.find(std::string(line) + "\n"), std::string::npos) << line;
+  EXPECT_NE(text.find("element vertex " + std::to_string(j["vertices"].get<int>()) + "\n"), std::string::npos);
+  EXPECT_NE(text.find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
+}
+
+TEST(Cli, SolveStopsAtTheShotLimitAndComparesWithTheReference) {
+  scratch_dir dir;
+  const std::string stats = dir.path("stats.json");
+  run_result r = run("solve --max-edge 200 --max-shots 7 --stats " + stats);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["shots"], 7);
+  r = run("solve " + source_path("assets/furnace/furnace.json") + " --max-edge 1 --until 1e-7 --reference --stats " +
+          stats);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(slurp(stats));
+  EXPECT_LT(j["reference"]["max_relative_difference"].get<double>(), 1e-5);
+  EXPECT_LT(j["reference"]["residual_lu"].get<double>(), 1e-12);
+}
+
+TEST(Cli, SolveRefusesAbsurdMeshes) {
+  run_result r = run("solve --max-edge 0.001");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("use a larger --max-edge"), std::string::npos) << r.err;
 }
 
 }  // namespace

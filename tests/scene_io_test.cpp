@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 
 #include "embedded.h"
 #include "scene_info.h"
@@ -303,6 +304,25 @@ TEST(SceneIo, JsonRoundTripOfEveryShape) {
   const auto& bs = std::get<bspline_surface>(s.surfaces[4].geometry);
   EXPECT_EQ(bs.control[13], vec3(1, 3, 0));
   EXPECT_EQ(s.lights[0].intensity, rgb(5.0));
+}
+
+TEST(SceneIo, ImageTextureIsDecodedToLinear) {
+  scratch_dir dir;
+  // 2x1 PNG: sRGB 255 (linear 1) and sRGB 128 (linear 0.2158).
+  const unsigned char pixels[] = {255, 255, 255, 128, 0, 64};
+  ASSERT_TRUE(stbi_write_png(dir.path("t.png").c_str(), 2, 1, 3, pixels, 6));
+  dir.write("m.mtl", "newmtl tex\nKd 0.5 0.5 0.5\nKe 1 1 1\nmap_Kd -s 1 1 1 t.png\n");
+  scene s = load_ok(dir.write("m.obj", "mtllib m.mtl\nusemtl tex\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  ASSERT_EQ(s.textures.size(), 1u);
+  const texture& t = s.textures[0];
+  EXPECT_EQ(t.kind, texture_kind::image);
+  EXPECT_EQ(t.width, 2);
+  EXPECT_EQ(t.height, 1);
+  EXPECT_FLOAT_EQ(t.texels[0], 1.0f);
+  EXPECT_NEAR(t.texels[3], 0.2158, 1e-4);
+  EXPECT_EQ(t.texels[4], 0.0f);
+  EXPECT_NEAR(t.texels[5], 0.0513, 1e-4);
+  EXPECT_EQ(s.materials[0].texture, 0);
 }
 
 // ---- bad input -----------------------------------------------------------

@@ -1,0 +1,137 @@
+#include "solve_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "patch_mesh.h"
+#include "ply.h"
+#include "radiosity.h"
+#include "reference_solver.h"
+
+namespace bounce {
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+nlohmann::json to_json(const rgb& c) {
+  return {c.r, c.g, c.b};
+}
+
+// Largest |a - b| / |b| over vertices and channels, with values below 1e-6
+// of the largest |b| compared absolutely (dark vertices have no relative error).
+double max_relative_difference(const std::vector<rgb>& a, const std::vector<rgb>& b) {
+  double largest = 0.0;
+  for (const rgb& c : b) largest = std::max({largest, c.r, c.g, c.b});
+  const double floor = 1e-6 * largest;
+  double worst = 0.0;
+  for (std::size_t v = 0; v < a.size(); ++v)
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(a[v][c] - b[v][c]) / std::max(std::abs(b[v][c]), floor));
+  return worst;
+}
+
+}  // namespace
+
+int run_solve(const scene& s, const solver_options& solver, const solve_options& extra) {
+  const auto mesh_start = clock_type::now();
+  patch_mesh mesh;
+  std::string error;
+  if (!make_patch_mesh(s, to_mesher_params(solver), mesh, error)) {
+    std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
+    return exit_input_error;
+  }
+  const double mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
+  std::printf("mesh: %zu elements, %zu vertices (max edge %g) in %.3f s\n", mesh.element_count(), mesh.vertex_count(),
+              mesh.max_edge, mesh_seconds);
+  if (mesh.nonmanifold_faces)
+    std::fprintf(stderr, "warning: %zu non-manifold face(s) kept with vertices of their own\n", mesh.nonmanifold_faces);
+
+  auto state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
+  auto last_print = clock_type::now();
+  std::uint64_t shots_then = 0, rays_then = 0;
+  run_radiosity(*state, to_stop_criterion(solver), [&](const radiosity_state& st) {
+    const auto now = clock_type::now();
+    const double dt = std::chrono::duration<double>(now - last_print).count();
+    if (dt < 1.0) return;
+    std::printf("shots %8llu  unshot %9.5f%%  %8.0f shots/s  %7.2f Mrays/s\n",
+                static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
+                double(st.stats.shots - shots_then) / dt, double(st.stats.rays - rays_then) / dt * 1e-6);
+    std::fflush(stdout);
+    last_print = now;
+    shots_then = st.stats.shots;
+    rays_then = st.stats.rays;
+  });
+  const radiosity_stats& st = state->stats;
+  const power_balance& pb = state->balance;
+  const double imbalance =
+      channel_sum(pb.emitted + pb.received - pb.shot - pb.unshot) / channel_sum(pb.emitted + pb.received);
+  std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
+              static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
+              static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
+              std::abs(imbalance));
+
+  nlohmann::json stats = {
+      {"scene", s.source},
+      {"method", solver.method},
+      {"max_edge", mesh.max_edge},
+      {"elements", mesh.element_count()},
+      {"vertices", mesh.vertex_count()},
+      {"mesh_seconds", mesh_seconds},
+      {"shots", st.shots},
+      {"unshot_fraction", st.unshot_fraction},
+      {"seconds", st.seconds},
+      {"rays", st.rays},
+      {"power",
+       {{"emitted", to_json(pb.emitted)},
+        {"received", to_json(pb.received)},
+        {"shot", to_json(pb.shot)},
+        {"unshot", to_json(pb.unshot)}}},
+  };
+
+  if (extra.reference) {
+    reference_params rp;
+    rp.form_factors = to_radiosity_params(solver).form_factors;
+    reference_solution ref;
+    if (!solve_reference(s, mesh, rp, ref, error)) {
+      std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
+      return exit_input_error;
+    }
+    const double difference = max_relative_difference(state->radiosity, ref.radiosity);
+    const double gs_difference = max_relative_difference(ref.radiosity_gauss_seidel, ref.radiosity);
+    std::printf(
+        "reference: matrix %.3f s, LU %.3f s (residual %.2e), Gauss-Seidel %.3f s, %d iterations (residual "
+        "%.2e, differs from LU by %.2e)\n",
+        ref.seconds_matrix, ref.seconds_lu, ref.residual, ref.seconds_gauss_seidel, ref.gauss_seidel_iterations,
+        ref.residual_gauss_seidel, gs_difference);
+    std::printf("progressive vs reference: max relative difference %.3e\n", difference);
+    stats["reference"] = {{"residual_lu", ref.residual},
+                          {"residual_gauss_seidel", ref.residual_gauss_seidel},
+                          {"gauss_seidel_iterations", ref.gauss_seidel_iterations},
+                          {"seconds_matrix", ref.seconds_matrix},
+                          {"seconds_lu", ref.seconds_lu},
+                          {"seconds_gauss_seidel", ref.seconds_gauss_seidel},
+                          {"max_relative_difference", difference}};
+  }
+  if (!solver.stats_path.empty()) {
+    std::ofstream out(solver.stats_path);
+    out << stats.dump(2) << "\n";
+    if (!out) {
+      std::fprintf(stderr, "error: %s: cannot write statistics\n", solver.stats_path.c_str());
+      return exit_input_error;
+    }
+  }
+  if (!extra.ply_path.empty()) {
+    if (!write_ply(extra.ply_path, mesh, state->radiosity, error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return exit_input_error;
+    }
+    std::printf("wrote %s\n", extra.ply_path.c_str());
+  }
+  return exit_ok;
+}
+
+}  // namespace bounce

@@ -1,0 +1,17 @@
+// `bounce solve`: mesh, run the progressive solver to the criterion, report.
+#pragma once
+
+#include <string>
+
+#include "cli.h"
+
+namespace bounce {
+
+struct solve_options {
+  std::string ply_path;    // --ply
+  bool reference = false;  // --reference: also solve the full matrix and compare
+};
+
+int run_solve(const scene& s, const solver_options& solver, const solve_options& extra);
+
+}  // namespace bounce

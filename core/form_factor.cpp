@@ -1,0 +1,184 @@
+#include "form_factor.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "occlusion.h"
+
+namespace bounce {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+// Polygon clipped to the half-space n . (x - p) >= 0 (Sutherland-Hodgman).
+// `out` holds at least in.size() + 1 points (a convex cut adds at most one).
+int clip_to_hemisphere(const vec3& p, const vec3& n, std::span<const vec3> in, vec3* out) {
+  int count = 0;
+  const std::size_t k = in.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const vec3& a = in[i];
+    const vec3& b = in[(i + 1) % k];
+    const double da = glm::dot(n, a - p), db = glm::dot(n, b - p);
+    if (da >= 0.0) out[count++] = a;
+    if ((da >= 0.0) != (db >= 0.0)) out[count++] = a + (b - a) * (da / (da - db));
+  }
+  return count;
+}
+
+// Lambert's sum over a polygon's edges (already clipped to the hemisphere).
+double contour_integral(const vec3& p, const vec3& n, const vec3* polygon, int k) {
+  double sum = 0.0;
+  for (int i = 0; i < k; ++i) {
+    const vec3 ai = polygon[i] - p, bi = polygon[(i + 1) % k] - p;
+    const vec3 cross = glm::cross(ai, bi);
+    const double length = glm::length(cross);
+    if (!(length > 0.0)) continue;  // an edge through p's line of sight contributes nothing
+    const double gamma = std::atan2(length, glm::dot(ai, bi));
+    sum += gamma * glm::dot(n, cross) / length;
+  }
+  return std::abs(sum) / (2.0 * pi);
+}
+
+// splitmix64: a tiny, good hash, so each (seed, vertex, element) pair has
+// its own reproducible jitter whatever the order of the shots.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+struct pair_random {
+  std::uint64_t state;
+  double next() { return double((state = mix(state)) >> 11) * 0x1.0p-53; }
+};
+
+// Stratified points on a triangle: an m x m grid of jittered cells in the
+// unit square, mapped to the triangle with the area-preserving sqrt warp.
+void stratified_points(const vec3& a, const vec3& b, const vec3& c, int m, pair_random& random, std::span<vec3> out) {
+  int i = 0;
+  for (int y = 0; y < m; ++y)
+    for (int x = 0; x < m; ++x) {
+      const double u = (x + random.next()) / m, v = (y + random.next()) / m;
+      const double su = std::sqrt(u);
+      out[i++] = a * (1.0 - su) + b * (su * (1.0 - v)) + c * (su * v);
+    }
+}
+
+struct raycast_query {
+  const form_factor_context& context;
+  int grid;  // shadow rays per (sub-)shooter: grid x grid
+
+  // F from the receive point to triangle (a, b, c) with visibility; splits
+  // the triangle where it is partly hidden and large for its distance.
+  double evaluate(const vec3& p, const vec3& n, const vec3& a, const vec3& b, const vec3& c, const vec3& shooter_normal,
+                  int depth, pair_random& random, std::uint64_t& rays) const {
+    const vec3 triangle[3] = {a, b, c};
+    const double unoccluded = point_polygon_form_factor(p, n, triangle);
+    if (unoccluded <= 0.0) return 0.0;
+    std::array<vec3, 64> targets;
+    const int count = grid * grid;
+    stratified_points(a, b, c, grid, random, std::span(targets.data(), count));
+    const vec3 from = p + n * context.offset;
+    for (int i = 0; i < count; ++i) targets[i] += shooter_normal * context.offset;
+    const int unblocked = context.occlusion->count_unblocked(from, std::span(targets.data(), count));
+    rays += count;
+    if (unblocked == count) return unoccluded;
+    if (unblocked == 0 && depth >= context.params.max_subdivision) return 0.0;
+    const vec3 centroid = (a + b + c) / 3.0;
+    const double size = std::sqrt(0.5 * glm::length(glm::cross(b - a, c - a)));
+    if (depth < context.params.max_subdivision && size > context.params.subdivide_ratio * glm::length(centroid - p)) {
+      // Partly hidden and large for its distance: the hidden fraction of
+      // the area is not the hidden fraction of the form factor. Split.
+      const vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
+      return evaluate(p, n, a, ab, ca, shooter_normal, depth + 1, random, rays) +
+             evaluate(p, n, ab, b, bc, shooter_normal, depth + 1, random, rays) +
+             evaluate(p, n, ca, bc, c, shooter_normal, depth + 1, random, rays) +
+             evaluate(p, n, ab, bc, ca, shooter_normal, depth + 1, random, rays);
+    }
+    return unoccluded * unblocked / count;
+  }
+};
+
+std::uint64_t raycast_form_factors(const form_factor_context& context, int element, std::span<double> out) {
+  const patch_mesh& mesh = *context.mesh;
+  const glm::ivec3 t = mesh.elements[element];
+  const vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+  const vec3 centroid = (a + b + c) / 3.0;
+  const vec3 shooter_normal = mesh.element_normals[element];
+  const int grid = std::clamp(int(std::ceil(std::sqrt(double(std::max(context.params.shadow_rays, 1))) - 1e-9)), 1, 8);
+  const raycast_query query{context, grid};
+  std::atomic<std::uint64_t> total_rays{0};
+
+  auto receive = [&](std::size_t begin, std::size_t end) {
+    std::uint64_t rays = 0;
+    for (std::size_t v = begin; v < end; ++v) {
+      const vec3& p = mesh.receive_points[v];
+      // The shooter emits from its front only; a receiver behind (or in)
+      // its plane gets nothing.
+      if (glm::dot(shooter_normal, p - centroid) <= 0.0) {
+        out[v] = 0.0;
+        continue;
+      }
+      pair_random random{mix(context.params.seed ^ mix(v * 0x100000001B3ull ^ std::uint64_t(element)))};
+      out[v] = query.evaluate(p, mesh.normals[v], a, b, c, shooter_normal, 0, random, rays);
+    }
+    total_rays += rays;
+  };
+  if (context.params.parallel)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertex_count(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) { receive(r.begin(), r.end()); });
+  else
+    receive(0, mesh.vertex_count());
+  return total_rays;
+}
+
+}  // namespace
+
+std::uint64_t hemicube_form_factors(const form_factor_context& context, int element, std::span<double> out);
+
+double point_polygon_form_factor(const vec3& p, const vec3& n, std::span<const vec3> polygon) {
+  // Triangles and quads, the hot path, stay on the stack.
+  std::array<vec3, 16> small;
+  std::vector<vec3> large;
+  vec3* clipped = small.data();
+  if (polygon.size() + 1 > small.size()) {
+    large.resize(polygon.size() + 1);
+    clipped = large.data();
+  }
+  const int k = clip_to_hemisphere(p, n, polygon, clipped);
+  return k < 3 ? 0.0 : contour_integral(p, n, clipped, k);
+}
+
+form_factor_context make_form_factor_context(const patch_mesh& mesh, const form_factor_params& params) {
+  form_factor_context context;
+  context.mesh = &mesh;
+  context.params = params;
+  context.occlusion = std::make_shared<occlusion_scene>(mesh.positions, mesh.elements);
+  context.vertex_areas.assign(mesh.vertex_count(), 0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) context.vertex_areas[mesh.elements[e][k]] += mesh.element_areas[e] / 3.0;
+  // Shadow rays start and end lifted off their surfaces along the normal,
+  // so they do not hit the surface they start on. Embree works in floats
+  // (7 digits), so the lift must be far above float round-off at the
+  // scene's scale yet far below any feature: 1e-5 of the diagonal (about
+  // 200 float ulps; 0.01 mm in the Cornell box).
+  context.offset = 1e-5 * mesh.scene_diagonal;
+  return context;
+}
+
+std::uint64_t form_factors_to_element(const form_factor_context& context, int element, std::span<double> out) {
+  if (context.params.method == form_factor_method::hemicube) return hemicube_form_factors(context, element, out);
+  return raycast_form_factors(context, element, out);
+}
+
+bool visible(const form_factor_context& context, const vec3& from, const vec3& from_normal, const vec3& to,
+             const vec3& to_normal) {
+  return !context.occlusion->occluded(from + from_normal * context.offset, to + to_normal * context.offset);
+}
+
+}  // namespace bounce

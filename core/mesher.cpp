@@ -1,0 +1,282 @@
+// make_patch_mesh: the OpenMesh patch mesher. OpenMesh stays inside this
+// file; the rest of Bounce sees the flat patch_mesh.
+#include <OpenMesh/Core/IO/MeshIO.hh>  // must precede the kernel (OpenMesh's rule)
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numbers>
+#include <queue>
+
+#include "patch_mesh.h"
+#include "scene_info.h"
+#include "tessellate.h"
+
+namespace bounce {
+namespace {
+
+struct mesh_traits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using om_mesh = OpenMesh::TriMesh_ArrayKernelT<mesh_traits>;
+
+vec3 to_glm(const OpenMesh::Vec3d& p) {
+  return {p[0], p[1], p[2]};
+}
+OpenMesh::Vec3d to_om(const vec3& p) {
+  return {p.x, p.y, p.z};
+}
+
+// The working mesh and what each vertex and face carries.
+struct working_mesh {
+  om_mesh mesh;
+  OpenMesh::VPropHandleT<vec3> normal_sum;  // area-weighted normals of the welded corners
+  OpenMesh::VPropHandleT<int> vertex_material;
+  OpenMesh::VPropHandleT<int> vertex_surface;
+  OpenMesh::FPropHandleT<int> face_material;
+  OpenMesh::FPropHandleT<int> face_surface;
+  OpenMesh::FPropHandleT<bool> face_flat;  // from a polygon: may be refined by bisection
+
+  working_mesh() {
+    mesh.add_property(normal_sum);
+    mesh.add_property(vertex_material);
+    mesh.add_property(vertex_surface);
+    mesh.add_property(face_material);
+    mesh.add_property(face_surface);
+    mesh.add_property(face_flat);
+  }
+};
+
+// Welds corners of one surface's triangles: same position (exactly: the
+// tessellator already merged what should be merged), same material, and
+// normals closer than the crease angle share one vertex.
+struct welder {
+  working_mesh& w;
+  int surface;
+  double cos_crease;
+  struct candidate {
+    om_mesh::VertexHandle vertex;
+    vec3 normal;  // the first corner's normal: comparing against a running mean would drift
+  };
+  std::map<std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, int>, std::vector<candidate>> by_key;
+
+  static std::uint64_t bits(double d) {
+    if (d == 0.0) d = 0.0;  // -0 and +0 are one position
+    std::uint64_t b;
+    std::memcpy(&b, &d, sizeof b);
+    return b;
+  }
+
+  om_mesh::VertexHandle vertex_for(const vec3& p, const vec3& n, int material) {
+    auto& list = by_key[{bits(p.x), bits(p.y), bits(p.z), material}];
+    for (const candidate& c : list)
+      if (glm::dot(c.normal, n) >= cos_crease) return c.vertex;
+    return list.emplace_back(candidate{new_vertex(p, material), n}).vertex;
+  }
+
+  om_mesh::VertexHandle new_vertex(const vec3& p, int material) {
+    om_mesh::VertexHandle v = w.mesh.add_vertex(to_om(p));
+    w.mesh.property(w.normal_sum, v) = vec3(0.0);
+    w.mesh.property(w.vertex_material, v) = material;
+    w.mesh.property(w.vertex_surface, v) = surface;
+    return v;
+  }
+};
+
+void add_surface(working_mesh& w, const triangle_mesh& tess, int surface, bool flat, double cos_crease,
+                 std::size_t& nonmanifold) {
+  welder weld{w, surface, cos_crease, {}};
+  for (std::size_t t = 0; t < tess.triangles.size(); ++t) {
+    const glm::ivec3 tri = tess.triangles[t];
+    const int material = tess.materials[t];
+    const vec3 p[3] = {tess.positions[tri[0]], tess.positions[tri[1]], tess.positions[tri[2]]};
+    const vec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
+    const double area = 0.5 * glm::length(cross);
+    if (!(area > 0.0)) continue;
+    om_mesh::VertexHandle v[3];
+    for (int k = 0; k < 3; ++k) v[k] = weld.vertex_for(p[k], tess.normals[tri[k]], material);
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+    om_mesh::FaceHandle f = w.mesh.add_face(v[0], v[1], v[2]);
+    if (!f.is_valid()) {
+      // A non-manifold configuration (e.g. three faces on one edge): keep
+      // the face with its own vertices rather than losing it.
+      ++nonmanifold;
+      for (int k = 0; k < 3; ++k) v[k] = weld.new_vertex(p[k], material);
+      f = w.mesh.add_face(v[0], v[1], v[2]);
+    }
+    for (int k = 0; k < 3; ++k) w.mesh.property(w.normal_sum, v[k]) += area * tess.normals[tri[k]];
+    w.mesh.property(w.face_material, f) = material;
+    w.mesh.property(w.face_surface, f) = surface;
+    w.mesh.property(w.face_flat, f) = flat;
+  }
+}
+
+bool edge_is_flat(const working_mesh& w, om_mesh::EdgeHandle e) {
+  for (int side = 0; side < 2; ++side) {
+    om_mesh::FaceHandle f = w.mesh.face_handle(w.mesh.halfedge_handle(e, side));
+    if (f.is_valid() && !w.mesh.property(w.face_flat, f)) return false;
+  }
+  return true;
+}
+
+// Longest-edge bisection (Rivara): always split the longest edge left. A
+// split's new edges are medians, never longer than the edge split, so each
+// split takes the longest edge of both its triangles: angles stay bounded.
+bool refine_flat_faces(working_mesh& w, double max_edge, std::string& error) {
+  om_mesh& m = w.mesh;
+  using entry = std::pair<double, int>;
+  std::priority_queue<entry> longest;
+  auto consider = [&](om_mesh::EdgeHandle e) {
+    double length = m.calc_edge_length(e);
+    if (length > max_edge && edge_is_flat(w, e)) longest.push({length, e.idx()});
+  };
+  for (om_mesh::EdgeHandle e : m.edges()) consider(e);
+  while (!longest.empty()) {
+    auto [length, index] = longest.top();
+    longest.pop();
+    om_mesh::EdgeHandle e(index);
+    if (m.calc_edge_length(e) != length) continue;  // stale: this handle was split since
+    om_mesh::HalfedgeHandle h = m.halfedge_handle(e, 0);
+    om_mesh::VertexHandle a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+    om_mesh::VertexHandle mid = m.add_vertex(0.5 * (m.point(a) + m.point(b)));
+    m.property(w.normal_sum, mid) =
+        glm::normalize(m.property(w.normal_sum, a)) + glm::normalize(m.property(w.normal_sum, b));
+    m.property(w.vertex_material, mid) = m.property(w.vertex_material, a);
+    m.property(w.vertex_surface, mid) = m.property(w.vertex_surface, a);
+    m.split_copy(e, mid);  // copies the face properties to the new faces
+    if (m.n_faces() > max_patch_elements) {
+      error = "the patch mesh would exceed " + std::to_string(max_patch_elements) + " elements at max edge " +
+              std::to_string(max_edge) + "; use a larger --max-edge";
+      return false;
+    }
+    for (om_mesh::HalfedgeHandle out : m.voh_range(mid)) consider(m.edge_handle(out));
+  }
+  return true;
+}
+
+// Where a boundary vertex is evaluated: a hair inside its own faces.
+vec3 receive_point(const om_mesh& m, om_mesh::VertexHandle v, const vec3& normal) {
+  const vec3 p = to_glm(m.point(v));
+  if (!m.is_boundary(v)) return p;
+  vec3 inward(0.0);
+  double edge_sum = 0.0;
+  int edges = 0;
+  for (om_mesh::FaceHandle f : m.vf_range(v)) {
+    vec3 centroid(0.0);
+    for (om_mesh::VertexHandle u : m.fv_range(f)) centroid += to_glm(m.point(u));
+    inward += glm::normalize(centroid / 3.0 - p);
+  }
+  for (om_mesh::HalfedgeHandle h : m.voh_range(v)) {
+    edge_sum += m.calc_edge_length(h);
+    ++edges;
+  }
+  inward -= glm::dot(inward, normal) * normal;  // stay in the tangent plane
+  double length = glm::length(inward);
+  if (!(length > 0.0) || edges == 0) return p;
+  return p + inward / length * (1e-3 * edge_sum / edges);
+}
+
+}  // namespace
+
+rgb texture_mean(const texture& t) {
+  if (t.kind == texture_kind::checker) return 0.5 * (t.color0 + t.color1);
+  rgb sum(0.0);
+  for (std::size_t i = 0; i + 2 < t.texels.size(); i += 3) sum += rgb(t.texels[i], t.texels[i + 1], t.texels[i + 2]);
+  std::size_t n = t.texels.size() / 3;
+  return n ? sum / double(n) : rgb(1.0);
+}
+
+bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error) {
+  const double max_edge = params.max_edge > 0.0 ? params.max_edge : default_max_edge(s);
+  const double cos_crease = std::cos(glm::radians(params.crease_angle_degrees));
+
+  // Refuse absurd requests before allocating: curved surfaces by their
+  // tessellation estimate, flat ones by area (bisection leaves triangles of
+  // about max_edge^2 / 4 or more).
+  double estimate = 0.0;
+  for (const surface& surf : s.surfaces) {
+    if (const auto* mesh = std::get_if<polygon_mesh>(&surf.geometry)) {
+      triangle_mesh flat = triangulate(*mesh);
+      for (const glm::ivec3& t : flat.triangles)
+        estimate += 0.5 *
+                    glm::length(glm::cross(flat.positions[t[1]] - flat.positions[t[0]],
+                                           flat.positions[t[2]] - flat.positions[t[0]])) /
+                    (0.25 * max_edge * max_edge);
+    } else {
+      estimate += double(estimate_triangles(surf, max_edge));
+    }
+  }
+  if (estimate > double(max_patch_elements)) {
+    error = "max edge " + std::to_string(max_edge) + " would make about " + std::to_string(std::llround(estimate)) +
+            " elements (limit " + std::to_string(max_patch_elements) + "); use a larger --max-edge";
+    return false;
+  }
+
+  working_mesh w;
+  std::size_t nonmanifold = 0;
+  for (std::size_t i = 0; i < s.surfaces.size(); ++i) {
+    const surface& surf = s.surfaces[i];
+    const bool flat = std::holds_alternative<polygon_mesh>(surf.geometry);
+    add_surface(w, tessellate(surf, max_edge), static_cast<int>(i), flat, cos_crease, nonmanifold);
+  }
+  if (!refine_flat_faces(w, max_edge, error)) return false;
+
+  const om_mesh& m = w.mesh;
+  patch_mesh pm;
+  bounds3 b = scene_bounds(s);
+  pm.scene_diagonal = std::max(glm::length(b.max - b.min), 1e-300);
+  pm.max_edge = max_edge;
+  const std::size_t nv = m.n_vertices();
+  pm.positions.resize(nv);
+  pm.normals.resize(nv);
+  pm.receive_points.resize(nv);
+  pm.vertex_rho.resize(nv);
+  pm.vertex_emission.resize(nv);
+  pm.vertex_surfaces.resize(nv);
+  for (om_mesh::VertexHandle v : m.vertices()) {
+    const int i = v.idx();
+    const material& mat = s.materials[m.property(w.vertex_material, v)];
+    pm.positions[i] = to_glm(m.point(v));
+    vec3 n = m.property(w.normal_sum, v);
+    pm.normals[i] = glm::length(n) > 0.0 ? glm::normalize(n) : vec3(0, 1, 0);
+    pm.receive_points[i] = receive_point(m, v, pm.normals[i]);
+    pm.vertex_rho[i] = mat.texture >= 0 ? mat.rho * texture_mean(s.textures[mat.texture]) : mat.rho;
+    pm.vertex_emission[i] = std::numbers::pi * mat.ke;
+    pm.vertex_surfaces[i] = m.property(w.vertex_surface, v);
+  }
+  for (om_mesh::FaceHandle f : m.faces()) {
+    glm::ivec3 tri;
+    int k = 0;
+    for (om_mesh::VertexHandle v : m.fv_range(f)) tri[k++] = v.idx();
+    const vec3 cross =
+        glm::cross(pm.positions[tri[1]] - pm.positions[tri[0]], pm.positions[tri[2]] - pm.positions[tri[0]]);
+    pm.elements.push_back(tri);
+    pm.element_areas.push_back(0.5 * glm::length(cross));
+    pm.element_normals.push_back(glm::normalize(cross));
+    pm.element_surfaces.push_back(m.property(w.face_surface, f));
+    pm.element_materials.push_back(m.property(w.face_material, f));
+  }
+  pm.nonmanifold_faces = nonmanifold;
+  out = std::move(pm);
+  return true;
+}
+
+vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point) {
+  const glm::ivec3 t = mesh.elements[element];
+  const vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+  const vec3 n = glm::cross(b - a, c - a);
+  const double inv = 1.0 / glm::dot(n, n);
+  const double wa = glm::dot(glm::cross(c - b, point - b), n) * inv;
+  const double wb = glm::dot(glm::cross(a - c, point - c), n) * inv;
+  return {wa, wb, 1.0 - wa - wb};
+}
+
+double total_area(const patch_mesh& mesh) {
+  double sum = 0.0;
+  for (double a : mesh.element_areas) sum += a;
+  return sum;
+}
+
+}  // namespace bounce

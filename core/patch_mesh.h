@@ -1,0 +1,76 @@
+// The patch mesh: what the radiosity solvers work on and the renderer
+// draws. Flat arrays; elements and vertices refer to each other by index.
+//
+// Radiosity is received and stored at vertices (the Gouraud view needs it
+// there); elements are flat triangles, the shooters. A vertex belongs to one
+// surface and one material: vertices are shared inside a smooth surface and
+// split where the normal breaks (creases) or the material changes.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace bounce {
+
+struct patch_mesh {
+  // Vertices
+  std::vector<vec3> positions;
+  std::vector<vec3> normals;         // unit surface normal (smooth surfaces: the true normal)
+  std::vector<vec3> receive_points;  // where form factors are evaluated; see make_patch_mesh
+  std::vector<rgb> vertex_rho;       // diffuse reflectance, times the texture's mean
+  std::vector<rgb> vertex_emission;  // exitance E = pi * ke
+  std::vector<int> vertex_surfaces;
+
+  // Elements
+  std::vector<glm::ivec3> elements;   // vertex indices, counter-clockwise seen from the front
+  std::vector<vec3> element_normals;  // unit geometric normal
+  std::vector<double> element_areas;
+  std::vector<int> element_surfaces;
+  std::vector<int> element_materials;
+
+  double scene_diagonal = 1.0;        // bounding box diagonal: the scale of every offset
+  double max_edge = 0.0;              // the element size it was built for
+  std::size_t nonmanifold_faces = 0;  // faces kept with vertices of their own (bad input topology)
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t element_count() const { return elements.size(); }
+};
+
+struct mesher_params {
+  double max_edge = 0.0;               // longest element edge; 0 = default_max_edge(scene)
+  double crease_angle_degrees = 30.0;  // vertices of faces meeting at a sharper angle are split
+};
+
+// Largest mesh make_patch_mesh builds; past it, a clear error.
+inline constexpr std::size_t max_patch_elements = 5'000'000;
+
+// Builds the patch mesh with OpenMesh: every surface tessellated, welded
+// into one connected mesh per smooth piece, and flat faces refined by
+// longest-edge bisection (Rivara) until no edge exceeds max_edge. An edge
+// split divides both triangles beside it, so the mesh stays conforming: no
+// T-vertices inside a surface. Curved surfaces are tessellated at max_edge
+// directly, so their vertices stay on the true surface.
+//
+// Receive points: a vertex on the boundary of its surface (e.g. where a wall
+// meets the floor) is evaluated a hair inside its own faces (1e-3 of its
+// edges' length), the one-sided limit; at the corner itself the neighbour
+// is seen exactly edge-on and the form factor would drop to zero.
+//
+// Returns false with `error` set when the mesh would exceed max_patch_elements.
+bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error);
+
+// Barycentric coordinates of `point` (projected onto the element's plane).
+vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point);
+
+// Mean value of a texture over its whole domain (how a texture scales rho
+// in the radiosity pass; the ray tracer puts the detail back per pixel).
+rgb texture_mean(const texture& t);
+
+// Total area of the mesh, and per surface.
+double total_area(const patch_mesh& mesh);
+
+}  // namespace bounce

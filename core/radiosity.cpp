@@ -1,0 +1,151 @@
+#include "radiosity.h"
+
+#include <algorithm>
+
+#include "point_lights.h"
+
+namespace bounce {
+namespace {
+
+// Adds what the vertices received (delta per vertex) to every element's
+// unshot radiosity, a third from each vertex; returns the power added.
+rgb spread_to_elements(radiosity_state& state, const std::vector<rgb>& delta) {
+  const patch_mesh& mesh = *state.mesh;
+  rgb power(0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    const rgb mean = (delta[t[0]] + delta[t[1]] + delta[t[2]]) / 3.0;
+    state.unshot[e] += mean;
+    power += mean * mesh.element_areas[e];
+  }
+  return power;
+}
+
+void update_fraction(radiosity_state& state) {
+  const patch_mesh& mesh = *state.mesh;
+  rgb unshot(0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) unshot += state.unshot[e] * mesh.element_areas[e];
+  state.balance.unshot = unshot;  // summed afresh: a running difference would lose digits near convergence
+  const double emitted = channel_sum(state.balance.emitted);
+  state.stats.unshot_fraction = emitted > 0.0 ? channel_sum(unshot) / emitted : 0.0;
+}
+
+void shoot_point_lights(radiosity_state& state) {
+  std::uint64_t rays = 0;
+  std::vector<rgb> delta = point_light_radiosity(*state.source, *state.mesh, state.form_factors, rays);
+  for (std::size_t v = 0; v < delta.size(); ++v) {
+    state.radiosity[v] += delta[v];
+    state.direct[v] += delta[v];
+  }
+  // Light from point lights enters the mesh here: it counts as emitted.
+  state.balance.emitted += spread_to_elements(state, delta);
+  state.stats.rays += rays;
+  state.lights_shot = true;
+}
+
+void shoot_element(radiosity_state& state, std::size_t shooter) {
+  const patch_mesh& mesh = *state.mesh;
+  state.stats.rays += form_factors_to_element(state.form_factors, int(shooter), state.scratch);
+  const rgb shot = state.unshot[shooter];
+  const rgb shot_emission = state.unshot_emission[shooter];
+  state.balance.shot += shot * mesh.element_areas[shooter];
+  state.unshot[shooter] = rgb(0.0);
+  state.unshot_emission[shooter] = rgb(0.0);
+  std::vector<rgb> delta(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double f = state.scratch[v];
+    delta[v] = mesh.vertex_rho[v] * (f * shot);
+    state.radiosity[v] += delta[v];
+    state.direct[v] += mesh.vertex_rho[v] * (f * shot_emission);
+  }
+  state.balance.received += spread_to_elements(state, delta);
+}
+
+}  // namespace
+
+std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
+                                                      const radiosity_params& params) {
+  auto state = std::make_unique<radiosity_state>();
+  state->mesh = &mesh;
+  state->source = &s;
+  state->params = params;
+  state->form_factors = make_form_factor_context(mesh, params.form_factors);
+  state->radiosity = mesh.vertex_emission;
+  state->direct.assign(mesh.vertex_count(), rgb(0.0));
+  state->unshot.assign(mesh.element_count(), rgb(0.0));
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    state->unshot[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
+    state->balance.emitted += state->unshot[e] * mesh.element_areas[e];
+  }
+  state->unshot_emission = state->unshot;
+  state->lights_shot = s.lights.empty();
+  state->scratch.assign(mesh.vertex_count(), 0.0);
+  update_fraction(*state);
+  if (!state->lights_shot) state->stats.unshot_fraction = 1.0;  // the lights' power is still to come
+  return state;
+}
+
+bool step_radiosity(radiosity_state& state) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!state.lights_shot) {
+    shoot_point_lights(state);
+  } else {
+    const patch_mesh& mesh = *state.mesh;
+    std::size_t shooter = 0;
+    double most = 0.0;
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+      const double power = channel_sum(state.unshot[e]) * mesh.element_areas[e];
+      if (power > most) {
+        most = power;
+        shooter = e;
+      }
+    }
+    if (!(most > 0.0)) return false;
+    shoot_element(state, shooter);
+  }
+  ++state.stats.shots;
+  update_fraction(state);
+  state.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+rgb ambient_radiosity(const radiosity_state& state) {
+  const patch_mesh& mesh = *state.mesh;
+  rgb reflectance(0.0), unshot(0.0);
+  double area = 0.0;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    const rgb rho = (mesh.vertex_rho[t[0]] + mesh.vertex_rho[t[1]] + mesh.vertex_rho[t[2]]) / 3.0;
+    reflectance += rho * mesh.element_areas[e];
+    unshot += state.unshot[e] * mesh.element_areas[e];
+    area += mesh.element_areas[e];
+  }
+  if (!(area > 0.0)) return rgb(0.0);
+  // Interreflection factor 1 + rho + rho^2 + ... of the mean reflectance.
+  const rgb mean_rho = reflectance / area;
+  return unshot / area / (rgb(1.0) - mean_rho);
+}
+
+std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state) {
+  const patch_mesh& mesh = *state.mesh;
+  auto snap = std::make_shared<radiosity_snapshot>();
+  snap->version = state.stats.shots;
+  snap->stats = state.stats;
+  snap->ambient = ambient_radiosity(state);
+  snap->radiosity.resize(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) snap->radiosity[v] = glm::vec3(state.radiosity[v]);
+  std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
+  std::vector<int> count(mesh.vertex_count(), 0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      sum[mesh.elements[e][k]] += state.unshot[e];
+      ++count[mesh.elements[e][k]];
+    }
+  snap->unshot_vertex.resize(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    snap->unshot_vertex[v] = glm::vec3(count[v] ? sum[v] / double(count[v]) : rgb(0.0));
+  return snap;
+}
+
+}  // namespace bounce

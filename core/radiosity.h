@@ -1,0 +1,115 @@
+// Progressive shooting radiosity (Cohen, Chen, Wallace & Greenberg 1988)
+// received at vertices, shot from elements.
+//
+// Discretisation (vertex collocation, shared with the reference solver):
+//   B_v = E_v + rho_v * sum_e F(v, e) * B_e,   B_e = mean of e's vertices,
+// the mean of a linear function over a triangle. Each element keeps unshot
+// radiosity U_e; a step shoots the element with the most unshot power
+// U_e * A_e to every vertex (dB_v = rho_v F(v, e) U_e), adds what each
+// vertex received to the unshot radiosity of its elements (a third each),
+// and zeroes U_e. Invariant: U = M B - S, with M the vertex-to-element mean
+// and S what each element has shot so far; at U = 0, B solves the system.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "form_factor.h"
+#include "patch_mesh.h"
+
+namespace bounce {
+
+struct radiosity_params {
+  form_factor_params form_factors;
+};
+
+// Power bookkeeping, per channel, in the scene's power units (radiosity x
+// area). At every step: emitted + received == shot + unshot, to round-off.
+struct power_balance {
+  rgb emitted{0.0};   // emission of the elements, plus point light arriving at vertices
+  rgb received{0.0};  // reflected power added to elements' unshot by shots
+  rgb shot{0.0};
+  rgb unshot{0.0};
+};
+
+struct radiosity_stats {
+  std::uint64_t shots = 0;
+  std::uint64_t rays = 0;
+  double seconds = 0.0;          // wall time spent in steps
+  double unshot_fraction = 1.0;  // unshot power / emitted power (sum of channels)
+};
+
+struct radiosity_state {
+  const patch_mesh* mesh = nullptr;
+  const scene* source = nullptr;
+  radiosity_params params;
+  form_factor_context form_factors;
+
+  std::vector<rgb> radiosity;        // B per vertex
+  std::vector<rgb> direct;           // the part of B received straight from emitters and point lights
+  std::vector<rgb> unshot;           // U per element
+  std::vector<rgb> unshot_emission;  // the part of U that is the element's own emission, not yet shot
+  power_balance balance;
+  radiosity_stats stats;
+  bool lights_shot = false;
+  std::vector<double> scratch;  // form factors of the current shot
+};
+
+// Sets B = E, U = M E, and prepares the form-factor method.
+std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
+                                                      const radiosity_params& params);
+
+// One step: point lights first (all of them, with shadow rays), then one
+// element shot. Returns false when nothing is left to shoot.
+bool step_radiosity(radiosity_state& state);
+
+struct stop_criterion {
+  double unshot_fraction = 0.0;  // stop when at or below (0: no limit)
+  std::uint64_t max_shots = 0;   // 0: no limit
+  double seconds = 0.0;          // 0: no limit
+};
+
+// Steps until a criterion holds or nothing is left. `on_step` (may be
+// empty) runs after every step, e.g. to publish a snapshot.
+template <typename callback>
+void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step);
+
+// Ambient term of Cohen 1988 for display only: the unshot power spread
+// evenly, reflected with the mean reflectance. Never stored in B.
+rgb ambient_radiosity(const radiosity_state& state);
+
+// An immutable copy for the viewer, published after every step.
+struct radiosity_snapshot {
+  std::uint64_t version = 0;             // shots so far; increases with every step
+  std::vector<glm::vec3> radiosity;      // per vertex, float for GL
+  std::vector<glm::vec3> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
+  rgb ambient{0.0};
+  radiosity_stats stats;
+};
+std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state);
+
+// Sum over channels, the scalar used to pick shooters and report fractions.
+inline double channel_sum(const rgb& c) {
+  return c.r + c.g + c.b;
+}
+
+// ---- template implementation ----
+
+template <typename callback>
+void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::uint64_t shots_at_start = state.stats.shots;
+  for (;;) {
+    if (stop.unshot_fraction > 0.0 && state.lights_shot && state.stats.unshot_fraction <= stop.unshot_fraction) return;
+    if (stop.max_shots > 0 && state.stats.shots - shots_at_start >= stop.max_shots) return;
+    if (stop.seconds > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= stop.seconds)
+      return;
+    if (!step_radiosity(state)) return;
+    on_step(state);
+  }
+}
+
+}  // namespace bounce

@@ -1,0 +1,45 @@
+// Small scenes built in code for the radiosity tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "patch_mesh.h"
+#include "scene.h"
+
+namespace bounce::testing {
+
+// Adds a material and returns its index.
+inline int add_material(scene& s, rgb rho, rgb ke = rgb(0.0)) {
+  material m;
+  m.name = "m" + std::to_string(s.materials.size());
+  m.rho = rho;
+  m.ke = ke;
+  s.materials.push_back(m);
+  return int(s.materials.size()) - 1;
+}
+
+// Adds one planar polygon as its own surface (counter-clockwise seen from
+// the side it faces).
+inline void add_polygon(scene& s, std::vector<vec3> corners, int material, const std::string& name = "") {
+  polygon_mesh mesh;
+  polygon_face face;
+  for (std::size_t i = 0; i < corners.size(); ++i) face.position.push_back(int(i));
+  face.material = material;
+  mesh.positions = std::move(corners);
+  mesh.faces.push_back(face);
+  surface surf;
+  surf.name = name.empty() ? "polygon" + std::to_string(s.surfaces.size()) : name;
+  surf.geometry = std::move(mesh);
+  s.surfaces.push_back(std::move(surf));
+}
+
+// An axis-aligned box [lo, hi] seen from inside: six faces facing in.
+inline void add_closed_box(scene& s, vec3 lo, vec3 hi, int material) {
+  const vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                     {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  const int faces[6][4] = {{0, 1, 2, 3}, {5, 4, 7, 6}, {4, 0, 3, 7}, {1, 5, 6, 2}, {4, 5, 1, 0}, {3, 2, 6, 7}};
+  for (const auto& f : faces) add_polygon(s, {c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, material);
+}
+
+}  // namespace bounce::testing
