@@ -83,13 +83,21 @@ struct raycast_query {
     std::array<vec3, 64> targets;
     const int count = grid * grid;
     stratified_points(a, b, c, grid, random, std::span(targets.data(), count));
+    // Targets are lifted off the shooter and pulled in from its edges by
+    // the offset: a sample on an edge shared with a perpendicular wall
+    // would otherwise graze that wall at float precision.
     const vec3 from = p + n * context.offset;
-    for (int i = 0; i < count; ++i) targets[i] += shooter_normal * context.offset;
+    const vec3 centroid = (a + b + c) / 3.0;
+    for (int i = 0; i < count; ++i) {
+      const vec3 inward = centroid - targets[i];
+      const double length = glm::length(inward);
+      const double pull = std::min(context.offset, 0.5 * length);
+      targets[i] += shooter_normal * context.offset + (length > 0.0 ? inward * (pull / length) : vec3(0.0));
+    }
     const int unblocked = context.occlusion->count_unblocked(from, std::span(targets.data(), count));
     rays += count;
     if (unblocked == count) return unoccluded;
     if (unblocked == 0 && depth >= context.params.max_subdivision) return 0.0;
-    const vec3 centroid = (a + b + c) / 3.0;
     const double size = std::sqrt(0.5 * glm::length(glm::cross(b - a, c - a)));
     if (depth < context.params.max_subdivision && size > context.params.subdivide_ratio * glm::length(centroid - p)) {
       // Partly hidden and large for its distance: the hidden fraction of
@@ -114,13 +122,17 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, int eleme
   const raycast_query query{context, grid};
   std::atomic<std::uint64_t> total_rays{0};
 
+  // A receiver in the shooter's plane sees it edge-on: F = 0. That covers
+  // the shooter's own vertices and its flat neighbours, which round-off
+  // would otherwise put a hair in front with a large, wrong form factor.
+  const double in_plane = 1e-9 * mesh.scene_diagonal;
   auto receive = [&](std::size_t begin, std::size_t end) {
     std::uint64_t rays = 0;
     for (std::size_t v = begin; v < end; ++v) {
       const vec3& p = mesh.receive_points[v];
       // The shooter emits from its front only; a receiver behind (or in)
       // its plane gets nothing.
-      if (glm::dot(shooter_normal, p - centroid) <= 0.0) {
+      if (glm::dot(shooter_normal, p - centroid) <= in_plane) {
         out[v] = 0.0;
         continue;
       }

@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <queue>
+#include <vector>
 
 #include "patch_mesh.h"
 #include "scene_info.h"
@@ -126,18 +127,22 @@ bool edge_is_flat(const working_mesh& w, om_mesh::EdgeHandle e) {
 // split takes the longest edge of both its triangles: angles stay bounded.
 bool refine_flat_faces(working_mesh& w, double max_edge, std::string& error) {
   om_mesh& m = w.mesh;
-  using entry = std::pair<double, int>;
+  // Lengths are ranked in units of max_edge rounded to 1e-9, so that equal
+  // edges tie exactly and the mesh does not depend on the scene's units.
+  auto rank = [&](om_mesh::EdgeHandle e) { return std::llround(m.calc_edge_length(e) / max_edge * 1e9); };
+  const long long limit = std::llround(1e9);
+  using entry = std::pair<long long, int>;
   std::priority_queue<entry> longest;
   auto consider = [&](om_mesh::EdgeHandle e) {
-    double length = m.calc_edge_length(e);
-    if (length > max_edge && edge_is_flat(w, e)) longest.push({length, e.idx()});
+    const long long r = rank(e);
+    if (r > limit && edge_is_flat(w, e)) longest.push({r, -e.idx()});  // ties: lowest index first
   };
   for (om_mesh::EdgeHandle e : m.edges()) consider(e);
   while (!longest.empty()) {
     auto [length, index] = longest.top();
     longest.pop();
-    om_mesh::EdgeHandle e(index);
-    if (m.calc_edge_length(e) != length) continue;  // stale: this handle was split since
+    om_mesh::EdgeHandle e(-index);
+    if (rank(e) != length) continue;  // stale: this handle was split since
     om_mesh::HalfedgeHandle h = m.halfedge_handle(e, 0);
     om_mesh::VertexHandle a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
     om_mesh::VertexHandle mid = m.add_vertex(0.5 * (m.point(a) + m.point(b)));
@@ -156,28 +161,33 @@ bool refine_flat_faces(working_mesh& w, double max_edge, std::string& error) {
   return true;
 }
 
-// Where a boundary vertex is evaluated: a hair inside its own faces.
-vec3 receive_point(const om_mesh& m, om_mesh::VertexHandle v, const vec3& normal) {
+// Where a boundary vertex is evaluated: a hair inside one of its own
+// faces, towards that face's centroid, so the point stays on the mesh (a
+// step along the tangent plane would leave a curved, faceted surface). The
+// face is the one whose direction is closest to the mean inward direction.
+vec3 receive_point(const om_mesh& m, om_mesh::VertexHandle v) {
   const vec3 p = to_glm(m.point(v));
   if (!m.is_boundary(v)) return p;
-  vec3 inward(0.0);
-  double edge_sum = 0.0;
-  int edges = 0;
+  vec3 mean(0.0);
+  std::vector<vec3> towards;
   for (om_mesh::FaceHandle f : m.vf_range(v)) {
     vec3 centroid(0.0);
     for (om_mesh::VertexHandle u : m.fv_range(f)) centroid += to_glm(m.point(u));
-    inward += glm::normalize(centroid / 3.0 - p);
+    towards.push_back(glm::normalize(centroid / 3.0 - p));
+    mean += towards.back();
   }
+  double edge_sum = 0.0;
+  int edges = 0;
   for (om_mesh::HalfedgeHandle h : m.voh_range(v)) {
     edge_sum += m.calc_edge_length(h);
     ++edges;
   }
-  inward -= glm::dot(inward, normal) * normal;  // stay in the tangent plane
-  double length = glm::length(inward);
-  if (!(length > 0.0) || edges == 0) return p;
-  return p + inward / length * (1e-3 * edge_sum / edges);
+  if (towards.empty() || edges == 0) return p;
+  vec3 best = towards[0];
+  for (const vec3& d : towards)
+    if (glm::dot(d, mean) > glm::dot(best, mean)) best = d;
+  return p + best * (1e-3 * edge_sum / edges);
 }
-
 }  // namespace
 
 rgb texture_mean(const texture& t) {
@@ -241,7 +251,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.positions[i] = to_glm(m.point(v));
     vec3 n = m.property(w.normal_sum, v);
     pm.normals[i] = glm::length(n) > 0.0 ? glm::normalize(n) : vec3(0, 1, 0);
-    pm.receive_points[i] = receive_point(m, v, pm.normals[i]);
+    pm.receive_points[i] = receive_point(m, v);
     pm.vertex_rho[i] = mat.texture >= 0 ? mat.rho * texture_mean(s.textures[mat.texture]) : mat.rho;
     pm.vertex_emission[i] = std::numbers::pi * mat.ke;
     pm.vertex_surfaces[i] = m.property(w.vertex_surface, v);
