@@ -196,6 +196,12 @@ void add_solver_options(CLI::App& command, solver_options& o) {
       ->capture_default_str();
   command.add_option("--max-shots", o.max_shots, "stop after this many shots")->check(CLI::NonNegativeNumber);
   command.add_option("--time", o.seconds, "stop after this many seconds")->check(CLI::NonNegativeNumber);
+  command
+      .add_option("--patch-edge", o.patch_edge,
+                  "size of the shooting patches over the elements (substructuring); default 4 x max edge, "
+                  "0: every element shoots (exact)")
+      ->check(CLI::NonNegativeNumber);
+  command.add_flag("--full-rays", o.full_rays, "raycast: cast every shadow ray, without the 2x2 visibility probe");
   command.add_option("--rays", o.shadow_rays, "raycast: shadow rays per receiver and shooter (rounded up to a square)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
@@ -210,12 +216,17 @@ radiosity_params to_radiosity_params(const solver_options& o) {
   p.form_factors.method = o.method == "hemicube" ? form_factor_method::hemicube : form_factor_method::raycast;
   p.form_factors.shadow_rays = o.shadow_rays;
   p.form_factors.hemicube_resolution = o.hemicube_resolution;
+  p.form_factors.adaptive_rays = !o.full_rays;
   return p;
 }
 
-mesher_params to_mesher_params(const solver_options& o) {
+mesher_params to_mesher_params(const solver_options& o, const scene& s) {
   mesher_params p;
-  p.max_edge = o.max_edge;
+  p.max_edge = o.max_edge > 0.0 ? o.max_edge : default_max_edge(s);
+  // Patches of about 16 elements shoot by default: measured on the Cornell
+  // box, 10x faster to 1e-4 unshot than element shooting, 1.2% mean
+  // deviation from its solution (README).
+  p.patch_edge = o.patch_edge < 0.0 ? 4.0 * p.max_edge : o.patch_edge;
   return p;
 }
 

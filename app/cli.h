@@ -20,7 +20,9 @@ struct solver_options {
   double until = 0.01;             // stop when unshot power falls below this fraction
   long max_shots = 0;              // 0 = no limit
   double seconds = 0.0;            // wall-time limit; 0 = none
+  double patch_edge = -1.0;        // shooter size (substructuring); 0 = elements shoot; < 0 = 4 x max edge
   int shadow_rays = 16;            // raycast: rays per receiver-shooter pair
+  bool full_rays = false;          // raycast: every ray for every pair, no 2x2 probe
   int hemicube_resolution = 256;   // hemicube: pixels along the top face
   std::string stats_path;          // --stats FILE.json
 };
@@ -38,7 +40,8 @@ struct mesher_params;
 struct stop_criterion;
 // The core parameters the options stand for.
 radiosity_params to_radiosity_params(const solver_options& options);
-mesher_params to_mesher_params(const solver_options& options);
+// Resolves the defaults that depend on the scene (element and patch size).
+mesher_params to_mesher_params(const solver_options& options, const scene& s);
 stop_criterion to_stop_criterion(const solver_options& options);
 void add_camera_options(CLI::App& command, camera_options& options);
 

@@ -40,13 +40,13 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   const auto mesh_start = clock_type::now();
   patch_mesh mesh;
   std::string error;
-  if (!make_patch_mesh(s, to_mesher_params(solver), mesh, error)) {
+  if (!make_patch_mesh(s, to_mesher_params(solver, s), mesh, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
     return exit_input_error;
   }
   const double mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
-  std::printf("mesh: %zu elements, %zu vertices (max edge %g) in %.3f s\n", mesh.element_count(), mesh.vertex_count(),
-              mesh.max_edge, mesh_seconds);
+  std::printf("mesh: %zu elements, %zu vertices, %zu shooting patches (max edge %g) in %.3f s\n", mesh.element_count(),
+              mesh.vertex_count(), mesh.patch_count(), mesh.max_edge, mesh_seconds);
   if (mesh.nonmanifold_faces)
     std::fprintf(stderr, "warning: %zu non-manifold face(s) kept with vertices of their own\n", mesh.nonmanifold_faces);
 
@@ -80,6 +80,8 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
       {"max_edge", mesh.max_edge},
       {"elements", mesh.element_count()},
       {"vertices", mesh.vertex_count()},
+      {"patches", mesh.patch_count()},
+      {"patch_edge", to_mesher_params(solver, s).patch_edge},
       {"mesh_seconds", mesh_seconds},
       {"shots", st.shots},
       {"unshot_fraction", st.unshot_fraction},

@@ -73,16 +73,13 @@ struct raycast_query {
   const form_factor_context& context;
   int grid;  // shadow rays per (sub-)shooter: grid x grid
 
-  // F from the receive point to triangle (a, b, c) with visibility; splits
-  // the triangle where it is partly hidden and large for its distance.
-  double evaluate(const vec3& p, const vec3& n, const vec3& a, const vec3& b, const vec3& c, const vec3& shooter_normal,
-                  int depth, pair_random& random, std::uint64_t& rays) const {
-    const vec3 triangle[3] = {a, b, c};
-    const double unoccluded = point_polygon_form_factor(p, n, triangle);
-    if (unoccluded <= 0.0) return 0.0;
+  // Fraction of `count` stratified rays from the receiver to the triangle
+  // that are unblocked.
+  int unblocked(const vec3& p, const vec3& n, const vec3& a, const vec3& b, const vec3& c, const vec3& shooter_normal,
+                int m, pair_random& random, std::uint64_t& rays) const {
     std::array<vec3, 64> targets;
-    const int count = grid * grid;
-    stratified_points(a, b, c, grid, random, std::span(targets.data(), count));
+    const int count = m * m;
+    stratified_points(a, b, c, m, random, std::span(targets.data(), count));
     // Targets are lifted off the shooter and pulled in from its edges by
     // the offset: a sample on an edge shared with a perpendicular wall
     // would otherwise graze that wall at float precision.
@@ -94,12 +91,31 @@ struct raycast_query {
       const double pull = std::min(context.offset, 0.5 * length);
       targets[i] += shooter_normal * context.offset + (length > 0.0 ? inward * (pull / length) : vec3(0.0));
     }
-    const int unblocked = context.occlusion->count_unblocked(from, std::span(targets.data(), count));
     rays += count;
-    if (unblocked == count) return unoccluded;
-    if (unblocked == 0 && depth >= context.params.max_subdivision) return 0.0;
+    return context.occlusion->count_unblocked(from, std::span(targets.data(), count));
+  }
+
+  // F from the receive point to triangle (a, b, c) with visibility; splits
+  // the triangle where it is partly hidden and large for its distance.
+  double evaluate(const vec3& p, const vec3& n, const vec3& a, const vec3& b, const vec3& c, const vec3& shooter_normal,
+                  int depth, pair_random& random, std::uint64_t& rays) const {
+    const vec3 triangle[3] = {a, b, c};
+    const double unoccluded = point_polygon_form_factor(p, n, triangle);
+    if (unoccluded <= 0.0) return 0.0;
+    const vec3 centroid = (a + b + c) / 3.0;
     const double size = std::sqrt(0.5 * glm::length(glm::cross(b - a, c - a)));
-    if (depth < context.params.max_subdivision && size > context.params.subdivide_ratio * glm::length(centroid - p)) {
+    const bool large = size > context.params.subdivide_ratio * glm::length(centroid - p);
+    // Spend rays where visibility is partial: a 2x2 probe decides a small
+    // shooter that it sees wholly visible or wholly hidden.
+    if (context.params.adaptive_rays && grid > 2 && !large) {
+      const int probe = unblocked(p, n, a, b, c, shooter_normal, 2, random, rays);
+      if (probe == 4) return unoccluded;
+      if (probe == 0) return 0.0;
+    }
+    const int count = grid * grid;
+    const int visible = unblocked(p, n, a, b, c, shooter_normal, grid, random, rays);
+    if (visible == count) return unoccluded;
+    if (depth < context.params.max_subdivision && large) {
       // Partly hidden and large for its distance: the hidden fraction of
       // the area is not the hidden fraction of the form factor. Split.
       const vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
@@ -108,20 +124,21 @@ struct raycast_query {
              evaluate(p, n, ca, bc, c, shooter_normal, depth + 1, random, rays) +
              evaluate(p, n, ab, bc, ca, shooter_normal, depth + 1, random, rays);
     }
-    return unoccluded * unblocked / count;
+    return unoccluded * visible / count;
   }
 };
 
-std::uint64_t raycast_form_factors(const form_factor_context& context, int element, std::span<double> out) {
+std::uint64_t raycast_form_factors(const form_factor_context& context, const shooter& from, std::span<double> out) {
   const patch_mesh& mesh = *context.mesh;
-  const glm::ivec3 t = mesh.elements[element];
-  const vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+  const vec3 a = from.corners[0], b = from.corners[1], c = from.corners[2];
   const vec3 centroid = (a + b + c) / 3.0;
-  const vec3 shooter_normal = mesh.element_normals[element];
+  const vec3 shooter_normal = from.normal;
+  // Each shooter has its own jitter stream. When patches are the elements
+  // their indices coincide, so both paths give identical form factors.
+  const std::uint64_t shooter_id = std::uint64_t(from.element >= 0 ? from.element : from.patch);
   const int grid = std::clamp(int(std::ceil(std::sqrt(double(std::max(context.params.shadow_rays, 1))) - 1e-9)), 1, 8);
   const raycast_query query{context, grid};
   std::atomic<std::uint64_t> total_rays{0};
-
   // A receiver in the shooter's plane sees it edge-on: F = 0. That covers
   // the shooter's own vertices and its flat neighbours, which round-off
   // would otherwise put a hair in front with a large, wrong form factor.
@@ -136,7 +153,7 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, int eleme
         out[v] = 0.0;
         continue;
       }
-      pair_random random{mix(context.params.seed ^ mix(v * 0x100000001B3ull ^ std::uint64_t(element)))};
+      pair_random random{mix(context.params.seed ^ mix(v * 0x100000001B3ull ^ shooter_id))};
       out[v] = query.evaluate(p, mesh.normals[v], a, b, c, shooter_normal, 0, random, rays);
     }
     total_rays += rays;
@@ -151,7 +168,7 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, int eleme
 
 }  // namespace
 
-std::uint64_t hemicube_form_factors(const form_factor_context& context, int element, std::span<double> out);
+std::uint64_t hemicube_form_factors(const form_factor_context& context, const shooter& from, std::span<double> out);
 
 double point_polygon_form_factor(const vec3& p, const vec3& n, std::span<const vec3> polygon) {
   // Triangles and quads, the hot path, stay on the stack.
@@ -183,9 +200,34 @@ form_factor_context make_form_factor_context(const patch_mesh& mesh, const form_
   return context;
 }
 
+namespace {
+
+std::uint64_t shoot(const form_factor_context& context, const shooter& from, std::span<double> out) {
+  if (context.params.method == form_factor_method::hemicube) return hemicube_form_factors(context, from, out);
+  return raycast_form_factors(context, from, out);
+}
+
+}  // namespace
+
 std::uint64_t form_factors_to_element(const form_factor_context& context, int element, std::span<double> out) {
-  if (context.params.method == form_factor_method::hemicube) return hemicube_form_factors(context, element, out);
-  return raycast_form_factors(context, element, out);
+  const patch_mesh& mesh = *context.mesh;
+  const glm::ivec3 t = mesh.elements[element];
+  shooter from;
+  from.corners = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+  from.normal = mesh.element_normals[element];
+  from.area = mesh.element_areas[element];
+  from.element = element;
+  return shoot(context, from, out);
+}
+
+std::uint64_t form_factors_to_patch(const form_factor_context& context, int patch, std::span<double> out) {
+  const patch_mesh& mesh = *context.mesh;
+  shooter from;
+  from.corners = mesh.patch_corners[patch];
+  from.normal = mesh.patch_normals[patch];
+  from.area = mesh.patch_areas[patch];
+  from.patch = patch;
+  return shoot(context, from, out);
 }
 
 bool visible(const form_factor_context& context, const vec3& from, const vec3& from_normal, const vec3& to,

@@ -6,6 +6,7 @@
 // what v receives from e per unit of e's radiosity: dB_v = rho_v F(v, e) B_e.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -29,6 +30,9 @@ struct form_factor_params {
   // raycast (Wallace 1989): analytic polygon term x visible fraction from
   // stratified shadow rays to the shooter (rounded up to a square number)
   int shadow_rays = 16;
+  // rays only where visibility is partial: a 2x2 probe first; the full
+  // grid only when the probe's rays disagree (or the shooter is large)
+  bool adaptive_rays = true;
   // a partly visible shooter is split in four while its size exceeds this
   // fraction of its distance to the receiver, to `max_subdivision` levels
   double subdivide_ratio = 1.0;
@@ -54,6 +58,23 @@ form_factor_context make_form_factor_context(const patch_mesh& mesh, const form_
 // F(v, element) for every vertex v into out (size vertex_count()).
 // Returns the number of shadow rays cast.
 std::uint64_t form_factors_to_element(const form_factor_context& context, int element, std::span<double> out);
+
+// F(v, patch) for every vertex v: the patch's outline triangle as one
+// shooter (what the progressive solver shoots). Returns the rays cast.
+std::uint64_t form_factors_to_patch(const form_factor_context& context, int patch, std::span<double> out);
+
+// A shooting triangle: an element, or a patch that elements tile.
+struct shooter {
+  std::array<vec3, 3> corners;
+  vec3 normal{0.0};
+  double area = 0.0;
+  int element = -1;  // the element itself, or -1 for a patch
+  int patch = -1;    // the patch whose elements it covers, or -1 for an element
+  // Whether an element is part of the shooter (it does not see itself).
+  bool contains(const patch_mesh& mesh, std::size_t e) const {
+    return element >= 0 ? int(e) == element : mesh.element_patches[e] == patch;
+  }
+};
 
 // Shadow-ray visibility of a segment, with both ends lifted off their
 // surfaces along their normals by the context's offset.

@@ -96,14 +96,13 @@ void rasterize(const face_frame& f, const vec3 (&local)[3], int id, double near,
 
 }  // namespace
 
-std::uint64_t hemicube_form_factors(const form_factor_context& context, int element, std::span<double> out) {
+std::uint64_t hemicube_form_factors(const form_factor_context& context, const shooter& from, std::span<double> out) {
   const patch_mesh& mesh = *context.mesh;
   const int resolution = std::max(2, context.params.hemicube_resolution & ~1);
-  const glm::ivec3 t = mesh.elements[element];
-  const vec3 n = mesh.element_normals[element];
+  const vec3 n = from.normal;
   // The eye: the centroid, lifted off the shooter (see the context's offset).
-  const vec3 eye = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0 + n * context.offset;
-  const vec3 tangent = glm::normalize(mesh.positions[t[1]] - mesh.positions[t[0]]);
+  const vec3 eye = (from.corners[0] + from.corners[1] + from.corners[2]) / 3.0 + n * context.offset;
+  const vec3 tangent = glm::normalize(from.corners[1] - from.corners[0]);
   const vec3 bitangent = glm::cross(n, tangent);
   const std::array<face_frame, 5> faces = {{
       {tangent, bitangent, n, resolution, resolution, -1.0},
@@ -120,7 +119,7 @@ std::uint64_t hemicube_form_factors(const form_factor_context& context, int elem
     face_buffer buffer{std::vector<double>(std::size_t(f.width) * f.height, 0.0),
                        std::vector<int>(std::size_t(f.width) * f.height, -1)};
     for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-      if (int(e) == element) continue;
+      if (from.contains(mesh, e)) continue;
       vec3 local[3];
       for (int k = 0; k < 3; ++k) {
         const vec3 d = mesh.positions[mesh.elements[e][k]] - eye;
@@ -157,7 +156,7 @@ std::uint64_t hemicube_form_factors(const form_factor_context& context, int elem
   else
     for (std::size_t fi = 0; fi < faces.size(); ++fi) render_face(fi);
 
-  const double area = mesh.element_areas[element];
+  const double area = from.area;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     double s = 0.0;
     for (const auto& acc : face_share) s += acc[v];

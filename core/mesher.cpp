@@ -39,8 +39,10 @@ struct working_mesh {
   OpenMesh::FPropHandleT<int> face_material;
   OpenMesh::FPropHandleT<int> face_surface;
   OpenMesh::FPropHandleT<bool> face_flat;  // from a polygon: may be refined by bisection
+  OpenMesh::FPropHandleT<int> face_patch;  // index of the coarse triangle it refines
 
   working_mesh() {
+    mesh.add_property(face_patch);
     mesh.add_property(normal_sum);
     mesh.add_property(vertex_material);
     mesh.add_property(vertex_surface);
@@ -231,7 +233,19 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     const bool flat = std::holds_alternative<polygon_mesh>(surf.geometry);
     add_surface(w, tessellate(surf, max_edge), static_cast<int>(i), flat, cos_crease, nonmanifold);
   }
-  if (!refine_flat_faces(w, max_edge, error)) return false;
+  // Two levels of bisection: to the patch size, where each face becomes a
+  // patch, then to the element size; split_copy hands the patch index down.
+  const double patch_edge = std::max(params.patch_edge, max_edge);
+  if (!refine_flat_faces(w, patch_edge, error)) return false;
+  std::vector<std::array<vec3, 3>> patch_corners;
+  for (om_mesh::FaceHandle f : w.mesh.faces()) {
+    w.mesh.property(w.face_patch, f) = int(patch_corners.size());
+    std::array<vec3, 3> corners;
+    int k = 0;
+    for (om_mesh::VertexHandle v : w.mesh.fv_range(f)) corners[k++] = to_glm(w.mesh.point(v));
+    patch_corners.push_back(corners);
+  }
+  if (patch_edge > max_edge && !refine_flat_faces(w, max_edge, error)) return false;
 
   const om_mesh& m = w.mesh;
   patch_mesh pm;
@@ -267,6 +281,13 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.element_normals.push_back(glm::normalize(cross));
     pm.element_surfaces.push_back(m.property(w.face_surface, f));
     pm.element_materials.push_back(m.property(w.face_material, f));
+    pm.element_patches.push_back(m.property(w.face_patch, f));
+  }
+  for (const auto& corners : patch_corners) {
+    const vec3 cross = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
+    pm.patch_corners.push_back(corners);
+    pm.patch_normals.push_back(glm::normalize(cross));
+    pm.patch_areas.push_back(0.5 * glm::length(cross));
   }
   pm.nonmanifold_faces = nonmanifold;
   out = std::move(pm);

@@ -7,6 +7,7 @@
 // split where the normal breaks (creases) or the material changes.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -31,6 +32,15 @@ struct patch_mesh {
   std::vector<double> element_areas;
   std::vector<int> element_surfaces;
   std::vector<int> element_materials;
+  std::vector<int> element_patches;  // the patch each element belongs to
+
+  // Patches: the shooters (Cohen 1986 substructuring). Each is a triangle
+  // of the coarser bisection level that its elements tile exactly, so it
+  // shoots as one polygon while its elements receive separately. With
+  // patch_edge == max_edge, patches and elements coincide.
+  std::vector<std::array<vec3, 3>> patch_corners;  // counter-clockwise seen from the front
+  std::vector<vec3> patch_normals;
+  std::vector<double> patch_areas;
 
   double scene_diagonal = 1.0;        // bounding box diagonal: the scale of every offset
   double max_edge = 0.0;              // the element size it was built for
@@ -38,11 +48,13 @@ struct patch_mesh {
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t element_count() const { return elements.size(); }
+  std::size_t patch_count() const { return patch_areas.size(); }
 };
 
 struct mesher_params {
   double max_edge = 0.0;               // longest element edge; 0 = default_max_edge(scene)
   double crease_angle_degrees = 30.0;  // vertices of faces meeting at a sharper angle are split
+  double patch_edge = 0.0;             // longest patch edge; 0 or <= max_edge: patches are the elements
 };
 
 // Largest mesh make_patch_mesh builds; past it, a clear error.

@@ -43,14 +43,22 @@ void shoot_point_lights(radiosity_state& state) {
   state.lights_shot = true;
 }
 
-void shoot_element(radiosity_state& state, std::size_t shooter) {
+// Shoots a patch: its elements' unshot radiosity, as the patch's
+// area-weighted mean, through the patch's outline (Cohen 1986). With one
+// element per patch this is element shooting exactly.
+void shoot_patch(radiosity_state& state, std::size_t patch) {
   const patch_mesh& mesh = *state.mesh;
-  state.stats.rays += form_factors_to_element(state.form_factors, int(shooter), state.scratch);
-  const rgb shot = state.unshot[shooter];
-  const rgb shot_emission = state.unshot_emission[shooter];
-  state.balance.shot += shot * mesh.element_areas[shooter];
-  state.unshot[shooter] = rgb(0.0);
-  state.unshot_emission[shooter] = rgb(0.0);
+  state.stats.rays += form_factors_to_patch(state.form_factors, int(patch), state.scratch);
+  rgb power(0.0), emission_power(0.0);
+  for (int e : state.patch_elements[patch]) {
+    power += state.unshot[e] * mesh.element_areas[e];
+    emission_power += state.unshot_emission[e] * mesh.element_areas[e];
+    state.unshot[e] = rgb(0.0);
+    state.unshot_emission[e] = rgb(0.0);
+  }
+  state.balance.shot += power;
+  const rgb shot = power / mesh.patch_areas[patch];
+  const rgb shot_emission = emission_power / mesh.patch_areas[patch];
   std::vector<rgb> delta(mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const double f = state.scratch[v];
@@ -81,6 +89,10 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   state->unshot_emission = state->unshot;
   state->lights_shot = s.lights.empty();
   state->scratch.assign(mesh.vertex_count(), 0.0);
+  state->patch_power.assign(mesh.patch_count(), 0.0);
+  state->patch_elements.assign(mesh.patch_count(), {});
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    state->patch_elements[mesh.element_patches[e]].push_back(int(e));
   update_fraction(*state);
   if (!state->lights_shot) state->stats.unshot_fraction = 1.0;  // the lights' power is still to come
   return state;
@@ -91,18 +103,15 @@ bool step_radiosity(radiosity_state& state) {
   if (!state.lights_shot) {
     shoot_point_lights(state);
   } else {
+    // The patch with the most unshot power shoots next.
     const patch_mesh& mesh = *state.mesh;
-    std::size_t shooter = 0;
-    double most = 0.0;
-    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-      const double power = channel_sum(state.unshot[e]) * mesh.element_areas[e];
-      if (power > most) {
-        most = power;
-        shooter = e;
-      }
-    }
-    if (!(most > 0.0)) return false;
-    shoot_element(state, shooter);
+    std::vector<double>& power = state.patch_power;
+    std::fill(power.begin(), power.end(), 0.0);
+    for (std::size_t e = 0; e < mesh.element_count(); ++e)
+      power[mesh.element_patches[e]] += channel_sum(state.unshot[e]) * mesh.element_areas[e];
+    const auto most = std::max_element(power.begin(), power.end());
+    if (most == power.end() || !(*most > 0.0)) return false;
+    shoot_patch(state, std::size_t(most - power.begin()));
   }
   ++state.stats.shots;
   update_fraction(state);

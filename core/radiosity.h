@@ -1,5 +1,6 @@
 // Progressive shooting radiosity (Cohen, Chen, Wallace & Greenberg 1988)
-// received at vertices, shot from elements.
+// received at vertices, shot from elements or from patches of elements
+// (substructuring, Cohen 1986).
 //
 // Discretisation (vertex collocation, shared with the reference solver):
 //   B_v = E_v + rho_v * sum_e F(v, e) * B_e,   B_e = mean of e's vertices,
@@ -9,6 +10,10 @@
 // vertex received to the unshot radiosity of its elements (a third each),
 // and zeroes U_e. Invariant: U = M B - S, with M the vertex-to-element mean
 // and S what each element has shot so far; at U = 0, B solves the system.
+// A patch shoots its elements' area-weighted mean unshot radiosity through
+// its outline: the same power, with the shooter's radiosity averaged over
+// the patch. With one element per patch (the default) the solver converges
+// to the reference solver's solution.
 #pragma once
 
 #include <chrono>
@@ -54,7 +59,9 @@ struct radiosity_state {
   power_balance balance;
   radiosity_stats stats;
   bool lights_shot = false;
-  std::vector<double> scratch;  // form factors of the current shot
+  std::vector<double> scratch;      // form factors of the current shot
+  std::vector<double> patch_power;  // unshot power per patch, for choosing the shooter
+  std::vector<std::vector<int>> patch_elements;
 };
 
 // Sets B = E, U = M E, and prepares the form-factor method.

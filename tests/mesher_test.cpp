@@ -210,6 +210,31 @@ TEST(Mesher, TexturesScaleReflectanceByTheirMean) {
   EXPECT_NEAR(mesh.vertex_rho[0].b, 0.5 * 0.8, 1e-12);
 }
 
+TEST(Mesher, PatchesAreTiledExactlyByTheirElements) {
+  scene s = cornell();
+  patch_mesh mesh;
+  std::string error;
+  ASSERT_TRUE(make_patch_mesh(s, {50.0, 30.0, 200.0}, mesh, error)) << error;
+  ASSERT_LT(mesh.patch_count(), mesh.element_count() / 4);
+  std::vector<double> covered(mesh.patch_count(), 0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const int p = mesh.element_patches[e];
+    covered[p] += mesh.element_areas[e];
+    // The element's centroid lies inside its patch's triangle, in its plane.
+    const glm::ivec3 t = mesh.elements[e];
+    const vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const auto& k = mesh.patch_corners[p];
+    EXPECT_NEAR(glm::dot(c - k[0], mesh.patch_normals[p]), 0.0, 1e-9);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_GE(glm::dot(glm::cross(k[(i + 1) % 3] - k[i], c - k[i]), mesh.patch_normals[p]), 0.0);
+  }
+  for (std::size_t p = 0; p < mesh.patch_count(); ++p) EXPECT_NEAR(covered[p] / mesh.patch_areas[p], 1.0, 1e-12);
+  // Without a patch size, every element is its own patch.
+  patch_mesh plain = mesh_of(s, 50.0);
+  EXPECT_EQ(plain.patch_count(), plain.element_count());
+  for (std::size_t e = 0; e < plain.element_count(); ++e) EXPECT_EQ(plain.element_patches[e], int(e));
+}
+
 TEST(Mesher, RefusesAbsurdSizes) {
   patch_mesh mesh;
   std::string error;

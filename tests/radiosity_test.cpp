@@ -313,6 +313,32 @@ TEST(Radiosity, ScaleDoesNotChangeTheAnswer) {
   }
 }
 
+TEST(Radiosity, PatchesShootTheSamePowerAndStayCloseToElementShooting) {
+  scene s = cornell();
+  patch_mesh mesh;
+  std::string error;
+  ASSERT_TRUE(make_patch_mesh(s, {100.0, 30.0, 400.0}, mesh, error)) << error;
+  patch_mesh fine_shooters;
+  ASSERT_TRUE(make_patch_mesh(s, {100.0, 30.0, 0.0}, fine_shooters, error)) << error;
+  ASSERT_EQ(mesh.positions, fine_shooters.positions);  // the same elements either way
+  auto patches = make_radiosity_state(s, mesh, with_rays(16));
+  auto elements = make_radiosity_state(s, fine_shooters, with_rays(16));
+  run_until(*patches, 1e-4);
+  run_until(*elements, 1e-4);
+  EXPECT_LT(patches->stats.shots * 4, elements->stats.shots);
+  const power_balance& b = patches->balance;
+  EXPECT_NEAR(channel_sum(b.emitted + b.received), channel_sum(b.shot + b.unshot), 1e-12 * channel_sum(b.emitted));
+  double brightest = 0.0;
+  for (const rgb& x : elements->radiosity) brightest = std::max(brightest, x.g);
+  double mean = 0.0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    mean += std::abs(patches->radiosity[v].g - elements->radiosity[v].g) /
+            std::max(elements->radiosity[v].g, 1e-2 * brightest) / double(mesh.vertex_count());
+  // Measured 3.2% here (400 mm patches over 100 mm elements); 1.2% for the
+  // default 4x over 40 mm elements.
+  EXPECT_LT(mean, 0.05);
+}
+
 TEST(Radiosity, AmbientTermIsForDisplayOnly) {
   scene s = furnace(0.5);
   patch_mesh mesh = mesh_of(s, 1.0);
