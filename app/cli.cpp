@@ -297,6 +297,8 @@ int run_cli(int argc, char** argv) {
   commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
   commands[3].app->add_flag("--reference", solve_extra.reference,
                             "also solve the full matrix (small scenes) and report the difference");
+  commands[3].app->add_flag("--ray-baseline", solve_extra.ray_baseline,
+                            "replay 2M of the solver's shadow rays through Embree's rtcOccluded1 and compare rates");
   CLI::App* bench = app.add_subcommand("bench", "measure speed against error");
 
   try {

@@ -1,12 +1,15 @@
 #include "solve_command.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
+#include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "occlusion.h"
 #include "patch_mesh.h"
 #include "ply.h"
 #include "radiosity.h"
@@ -51,6 +54,9 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
     std::fprintf(stderr, "warning: %zu non-manifold face(s) kept with vertices of their own\n", mesh.nonmanifold_faces);
 
   auto state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
+  constexpr std::size_t baseline_rays = 2'000'000;
+  if (extra.ray_baseline)
+    std::const_pointer_cast<occlusion_scene>(state->form_factors.occlusion)->record_segments(baseline_rays);
   auto last_print = clock_type::now();
   std::uint64_t shots_then = 0, rays_then = 0;
   run_radiosity(*state, to_stop_criterion(solver), [&](const radiosity_state& st) {
@@ -117,6 +123,29 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
                           {"seconds_lu", ref.seconds_lu},
                           {"seconds_gauss_seidel", ref.seconds_gauss_seidel},
                           {"max_relative_difference", difference}};
+  }
+  if (extra.ray_baseline) {
+    // The same segments, one rtcOccluded1 call each, on all cores: Embree's
+    // own rate on exactly the solver's rays, with no form-factor work.
+    const auto segments = state->form_factors.occlusion->recorded_segments();
+    const auto start = clock_type::now();
+    std::atomic<std::size_t> blocked{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::size_t local = 0;
+                        for (std::size_t i = r.begin(); i < r.end(); ++i)
+                          local += state->form_factors.occlusion->occluded(segments[i].from, segments[i].to);
+                        blocked += local;
+                      });
+    const double seconds = std::chrono::duration<double>(clock_type::now() - start).count();
+    const double raw = double(segments.size()) / seconds * 1e-6;
+    const double solver_rate = st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0;
+    std::printf(
+        "ray baseline: rtcOccluded1 on %zu recorded solver rays: %.2f Mrays/s (%zu blocked); the solver's "
+        "%.2f Mrays/s, form factors included, is %.0f%% of it\n",
+        segments.size(), raw, blocked.load(), solver_rate, raw > 0 ? 100.0 * solver_rate / raw : 0.0);
+    stats["ray_baseline"] = {
+        {"rays", segments.size()}, {"embree_mrays_per_second", raw}, {"solver_mrays_per_second", solver_rate}};
   }
   if (!solver.stats_path.empty()) {
     std::ofstream out(solver.stats_path);

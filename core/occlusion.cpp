@@ -1,5 +1,6 @@
 #include "occlusion.h"
 
+#include <atomic>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -28,6 +29,8 @@ RTCDevice shared_device() {
 
 struct occlusion_scene::embree_state {
   RTCScene scene = nullptr;
+  std::vector<segment> recorded;               // sized once by record_segments
+  std::atomic<std::size_t> recorded_count{0};  // slots claimed so far
 };
 
 occlusion_scene::occlusion_scene(std::span<const vec3> positions, std::span<const glm::ivec3> triangles)
@@ -74,7 +77,22 @@ bool occlusion_scene::occluded(const vec3& from, const vec3& to) const {
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+void occlusion_scene::record_segments(std::size_t capacity) {
+  state_->recorded.assign(capacity, segment{});
+  state_->recorded_count = 0;
+}
+
+std::vector<occlusion_scene::segment> occlusion_scene::recorded_segments() const {
+  const std::size_t n = std::min(state_->recorded_count.load(), state_->recorded.size());
+  return {state_->recorded.begin(), state_->recorded.begin() + std::ptrdiff_t(n)};
+}
+
 int occlusion_scene::count_unblocked(const vec3& from, std::span<const vec3> targets) const {
+  if (state_->recorded_count.load(std::memory_order_relaxed) < state_->recorded.size()) {
+    const std::size_t slot = state_->recorded_count.fetch_add(targets.size());
+    for (std::size_t i = 0; i < targets.size() && slot + i < state_->recorded.size(); ++i)
+      state_->recorded[slot + i] = {from, targets[i]};
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // rays share their origin

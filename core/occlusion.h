@@ -29,6 +29,14 @@ class occlusion_scene {
   // Cast in packets of 8 (Embree's rtcOccluded8). Thread-safe.
   int count_unblocked(const vec3& from, std::span<const vec3> targets) const;
 
+  // Keeps a copy of the first `capacity` segments that count_unblocked
+  // casts, so that a benchmark can replay the very same rays one at a time.
+  struct segment {
+    vec3 from, to;
+  };
+  void record_segments(std::size_t capacity);
+  std::vector<segment> recorded_segments() const;
+
  private:
   struct embree_state;
   std::unique_ptr<embree_state> state_;
