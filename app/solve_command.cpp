@@ -124,7 +124,9 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
                           {"seconds_gauss_seidel", ref.seconds_gauss_seidel},
                           {"max_relative_difference", difference}};
   }
-  if (extra.ray_baseline) {
+  if (extra.ray_baseline && solver.method != "raycast") {
+    std::printf("ray baseline: the hemicube casts no shadow rays\n");
+  } else if (extra.ray_baseline) {
     // The same segments, one rtcOccluded1 call each, on all cores: Embree's
     // own rate on exactly the solver's rays, with no form-factor work.
     const auto segments = state->form_factors.occlusion->recorded_segments();

@@ -61,6 +61,18 @@ std::string at(const std::string& file, int line) {
   return file + ":" + std::to_string(line);
 }
 
+// Calls statement(tokens, "file:line", line) for every non-empty line of a
+// Wavefront file (OBJ and MTL share this syntax).
+template <typename callback>
+void for_each_statement(std::string_view text, const std::string& path, callback&& statement) {
+  line_reader lines{text};
+  std::string_view line;
+  while (lines.next(line)) {
+    const auto tokens = tokenize(line);
+    if (!tokens.empty()) statement(tokens, at(path, lines.number), lines.number);
+  }
+}
+
 double parse_number(std::string_view token, const std::string& where) {
   double value = 0.0;
   auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
@@ -124,50 +136,47 @@ void read_mtl(const std::string& path, const std::string& where, std::vector<mat
 
   std::vector<mtl_block> blocks;
   std::set<std::string> ignored;
-  line_reader lines{*text};
-  std::string_view line;
-  while (lines.next(line)) {
-    auto tokens = tokenize(line);
-    if (tokens.empty()) continue;
-    const std::string here = at(path, lines.number);
-    const std::string_view key = tokens[0];
-    if (key == "newmtl") {
-      if (tokens.size() != 2) throw load_error(here + ": 'newmtl' needs one name");
-      blocks.push_back({});
-      blocks.back().mat.name = std::string(tokens[1]);
-      blocks.back().line = lines.number;
-      continue;
-    }
-    if (blocks.empty()) throw load_error(here + ": '" + std::string(key) + "' before any 'newmtl'");
-    mtl_block& b = blocks.back();
-    if (key == "Kd")
-      b.mat.rho = parse_colour(tokens, here);
-    else if (key == "Ke")
-      b.mat.ke = parse_colour(tokens, here);
-    else if (key == "Ks")
-      b.ks = parse_colour(tokens, here);
-    else if (key == "Ns")
-      b.mat.shininess = parse_numbers(tokens, 1, 0, here)[0];
-    else if (key == "Ni")
-      b.mat.ior = parse_numbers(tokens, 1, 0, here)[0];
-    else if (key == "d")
-      b.dissolve = parse_numbers(tokens, 1, 0, here)[0];
-    else if (key == "Tr")
-      b.dissolve = 1.0 - parse_numbers(tokens, 1, 0, here)[0];
-    else if (key == "illum") {
-      double v = parse_numbers(tokens, 1, 0, here)[0];
-      if (v != std::floor(v) || v < 0 || v > 10) throw load_error(here + ": 'illum' must be an integer from 0 to 10");
-      b.illum = static_cast<int>(v);
-    } else if (key == "map_Kd") {
-      // Options such as "-s 1 1 1" may precede the file name, which comes last.
-      if (tokens.size() < 2) throw load_error(here + ": 'map_Kd' needs a file name");
-      std::string name(tokens.back());
-      textures.push_back(read_image_texture(resolve(path, name), name, here));
-      b.mat.texture = static_cast<int>(textures.size()) - 1;
-    } else if (ignored.insert(std::string(key)).second) {
-      warnings.push_back(here + ": '" + std::string(key) + "' is not used by Bounce; ignored");
-    }
-  }
+  for_each_statement(*text, path,
+                     [&](const std::vector<std::string_view>& tokens, const std::string& here, int number) {
+                       const std::string_view key = tokens[0];
+                       if (key == "newmtl") {
+                         if (tokens.size() != 2) throw load_error(here + ": 'newmtl' needs one name");
+                         blocks.push_back({});
+                         blocks.back().mat.name = std::string(tokens[1]);
+                         blocks.back().line = number;
+                         return;
+                       }
+                       if (blocks.empty()) throw load_error(here + ": '" + std::string(key) + "' before any 'newmtl'");
+                       mtl_block& b = blocks.back();
+                       if (key == "Kd")
+                         b.mat.rho = parse_colour(tokens, here);
+                       else if (key == "Ke")
+                         b.mat.ke = parse_colour(tokens, here);
+                       else if (key == "Ks")
+                         b.ks = parse_colour(tokens, here);
+                       else if (key == "Ns")
+                         b.mat.shininess = parse_numbers(tokens, 1, 0, here)[0];
+                       else if (key == "Ni")
+                         b.mat.ior = parse_numbers(tokens, 1, 0, here)[0];
+                       else if (key == "d")
+                         b.dissolve = parse_numbers(tokens, 1, 0, here)[0];
+                       else if (key == "Tr")
+                         b.dissolve = 1.0 - parse_numbers(tokens, 1, 0, here)[0];
+                       else if (key == "illum") {
+                         double v = parse_numbers(tokens, 1, 0, here)[0];
+                         if (v != std::floor(v) || v < 0 || v > 10)
+                           throw load_error(here + ": 'illum' must be an integer from 0 to 10");
+                         b.illum = static_cast<int>(v);
+                       } else if (key == "map_Kd") {
+                         // Options such as "-s 1 1 1" may precede the file name, which comes last.
+                         if (tokens.size() < 2) throw load_error(here + ": 'map_Kd' needs a file name");
+                         std::string name(tokens.back());
+                         textures.push_back(read_image_texture(resolve(path, name), name, here));
+                         b.mat.texture = static_cast<int>(textures.size()) - 1;
+                       } else if (ignored.insert(std::string(key)).second) {
+                         warnings.push_back(here + ": '" + std::string(key) + "' is not used by Bounce; ignored");
+                       }
+                     });
   for (const mtl_block& b : blocks) {
     if (b.dissolve < 0.0 || b.dissolve > 1.0)
       throw load_error(at(path, b.line) + ": material '" + b.mat.name + "': d must be in [0,1]");
@@ -250,98 +259,98 @@ obj_read_result read_obj(const std::string& path, std::vector<material>& materia
     return objects.back();
   };
 
-  line_reader lines{*text};
-  std::string_view line;
-  while (lines.next(line)) {
-    auto tokens = tokenize(line);
-    if (tokens.empty()) continue;
-    const std::string here = at(path, lines.number);
-    const std::string_view key = tokens[0];
-    if (positions.size() + normals.size() + uvs.size() > max_obj_elements)
-      throw load_error(here + ": more than " + std::to_string(max_obj_elements) + " vertices; too large for Bounce");
-    if (key == "v") {
-      auto v = parse_numbers(tokens, 3, 1, here);  // optional w is ignored
-      positions.emplace_back(v[0], v[1], v[2]);
-    } else if (key == "vn") {
-      auto v = parse_numbers(tokens, 3, 0, here);
-      vec3 n(v[0], v[1], v[2]);
-      if (glm::length(n) == 0.0) throw load_error(here + ": normal has zero length");
-      normals.push_back(glm::normalize(n));
-    } else if (key == "vt") {
-      auto v = parse_numbers(tokens, 1, 2, here);
-      uvs.emplace_back(v[0], v.size() > 1 ? v[1] : 0.0);
-    } else if (key == "f") {
-      if (current_material < 0) {
-        if (default_material < 0) {
-          material grey;
-          grey.name = "default";
-          grey.rho = rgb(0.5);
-          materials.push_back(grey);
-          default_material = static_cast<int>(materials.size()) - 1;
-          result.warnings.push_back(here + ": faces without 'usemtl' get a grey default material");
+  for_each_statement(
+      *text, path, [&](const std::vector<std::string_view>& tokens, const std::string& here, int number) {
+        const std::string_view key = tokens[0];
+        if (positions.size() + normals.size() + uvs.size() > max_obj_elements)
+          throw load_error(here + ": more than " + std::to_string(max_obj_elements) +
+                           " vertices; too large for Bounce");
+        if (key == "v") {
+          auto v = parse_numbers(tokens, 3, 1, here);  // optional w is ignored
+          positions.emplace_back(v[0], v[1], v[2]);
+        } else if (key == "vn") {
+          auto v = parse_numbers(tokens, 3, 0, here);
+          vec3 n(v[0], v[1], v[2]);
+          if (glm::length(n) == 0.0) throw load_error(here + ": normal has zero length");
+          normals.push_back(glm::normalize(n));
+        } else if (key == "vt") {
+          auto v = parse_numbers(tokens, 1, 2, here);
+          uvs.emplace_back(v[0], v.size() > 1 ? v[1] : 0.0);
+        } else if (key == "f") {
+          if (current_material < 0) {
+            if (default_material < 0) {
+              material grey;
+              grey.name = "default";
+              grey.rho = rgb(0.5);
+              materials.push_back(grey);
+              default_material = static_cast<int>(materials.size()) - 1;
+              result.warnings.push_back(here + ": faces without 'usemtl' get a grey default material");
+            }
+            current_material = default_material;
+          }
+          object_builder& obj = current_object();
+          auto& mesh = std::get<polygon_mesh>(obj.out.geometry);
+          polygon_face face;
+          face.material = current_material;
+          face.line = number;
+          std::size_t with_uv = 0, with_normal = 0;
+          for (std::size_t i = 1; i < tokens.size(); ++i) {
+            // v, v/vt, v//vn or v/vt/vn
+            std::string_view corner = tokens[i];
+            std::size_t s1 = corner.find('/');
+            std::string_view pv = corner.substr(0, s1), tv, nv;
+            if (s1 != std::string_view::npos) {
+              std::size_t s2 = corner.find('/', s1 + 1);
+              tv = corner.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
+              if (s2 != std::string_view::npos) nv = corner.substr(s2 + 1);
+            }
+            int p = resolve_index(pv, positions.size(), "vertex", here);
+            face.position.push_back(object_builder::remap(obj.position_map, p, mesh.positions, positions));
+            if (!tv.empty()) {
+              int t = resolve_index(tv, uvs.size(), "texture coordinate", here);
+              face.uv.push_back(object_builder::remap(obj.uv_map, t, mesh.uvs, uvs));
+              ++with_uv;
+            }
+            if (!nv.empty()) {
+              int n = resolve_index(nv, normals.size(), "normal", here);
+              face.normal.push_back(object_builder::remap(obj.normal_map, n, mesh.normals, normals));
+              ++with_normal;
+            }
+          }
+          const std::size_t corners = face.position.size();
+          if ((with_uv != 0 && with_uv != corners) || (with_normal != 0 && with_normal != corners))
+            throw load_error(here + ": every corner of a face must have the same form (v, v/vt, v//vn, v/vt/vn)");
+          if (corners < 3) {
+            ++result.dropped_faces;
+            result.warnings.push_back(here + ": face with " + std::to_string(corners) + " corners dropped");
+            return;
+          }
+          mesh.faces.push_back(std::move(face));
+        } else if (key == "o") {
+          objects.emplace_back();
+          objects.back().out.name =
+              tokens.size() > 1 ? std::string(tokens[1]) : "object" + std::to_string(objects.size());
+          objects.back().out.source = path;
+          objects.back().out.geometry = polygon_mesh{};
+        } else if (key == "usemtl") {
+          if (tokens.size() != 2) throw load_error(here + ": 'usemtl' needs one name");
+          auto it = material_by_name.find(std::string(tokens[1]));
+          if (it == material_by_name.end())
+            throw load_error(here + ": material '" + std::string(tokens[1]) +
+                             "' is not defined in any mtllib read so far");
+          current_material = it->second;
+        } else if (key == "mtllib") {
+          if (tokens.size() < 2) throw load_error(here + ": 'mtllib' needs a file name");
+          for (std::size_t i = 1; i < tokens.size(); ++i)
+            read_mtl(resolve(path, std::string(tokens[i])), here, materials, textures, material_by_name,
+                     result.warnings);
+        } else if (key == "g" || key == "s") {
+          // Groups and smoothing groups carry nothing Bounce uses: smoothness
+          // comes from the normals given or from the faces' planes.
+        } else if (ignored.insert(std::string(key)).second) {
+          result.warnings.push_back(here + ": '" + std::string(key) + "' is not used by Bounce; ignored");
         }
-        current_material = default_material;
-      }
-      object_builder& obj = current_object();
-      auto& mesh = std::get<polygon_mesh>(obj.out.geometry);
-      polygon_face face;
-      face.material = current_material;
-      face.line = lines.number;
-      std::size_t with_uv = 0, with_normal = 0;
-      for (std::size_t i = 1; i < tokens.size(); ++i) {
-        // v, v/vt, v//vn or v/vt/vn
-        std::string_view corner = tokens[i];
-        std::size_t s1 = corner.find('/');
-        std::string_view pv = corner.substr(0, s1), tv, nv;
-        if (s1 != std::string_view::npos) {
-          std::size_t s2 = corner.find('/', s1 + 1);
-          tv = corner.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
-          if (s2 != std::string_view::npos) nv = corner.substr(s2 + 1);
-        }
-        int p = resolve_index(pv, positions.size(), "vertex", here);
-        face.position.push_back(object_builder::remap(obj.position_map, p, mesh.positions, positions));
-        if (!tv.empty()) {
-          int t = resolve_index(tv, uvs.size(), "texture coordinate", here);
-          face.uv.push_back(object_builder::remap(obj.uv_map, t, mesh.uvs, uvs));
-          ++with_uv;
-        }
-        if (!nv.empty()) {
-          int n = resolve_index(nv, normals.size(), "normal", here);
-          face.normal.push_back(object_builder::remap(obj.normal_map, n, mesh.normals, normals));
-          ++with_normal;
-        }
-      }
-      const std::size_t corners = face.position.size();
-      if ((with_uv != 0 && with_uv != corners) || (with_normal != 0 && with_normal != corners))
-        throw load_error(here + ": every corner of a face must have the same form (v, v/vt, v//vn, v/vt/vn)");
-      if (corners < 3) {
-        ++result.dropped_faces;
-        result.warnings.push_back(here + ": face with " + std::to_string(corners) + " corners dropped");
-        continue;
-      }
-      mesh.faces.push_back(std::move(face));
-    } else if (key == "o") {
-      objects.emplace_back();
-      objects.back().out.name = tokens.size() > 1 ? std::string(tokens[1]) : "object" + std::to_string(objects.size());
-      objects.back().out.source = path;
-      objects.back().out.geometry = polygon_mesh{};
-    } else if (key == "usemtl") {
-      if (tokens.size() != 2) throw load_error(here + ": 'usemtl' needs one name");
-      auto it = material_by_name.find(std::string(tokens[1]));
-      if (it == material_by_name.end())
-        throw load_error(here + ": material '" + std::string(tokens[1]) + "' is not defined in any mtllib read so far");
-      current_material = it->second;
-    } else if (key == "mtllib") {
-      if (tokens.size() < 2) throw load_error(here + ": 'mtllib' needs a file name");
-      for (std::size_t i = 1; i < tokens.size(); ++i)
-        read_mtl(resolve(path, std::string(tokens[i])), here, materials, textures, material_by_name, result.warnings);
-    } else if (key == "g" || key == "s") {
-      // Groups and smoothing groups carry nothing Bounce uses: smoothness
-      // comes from the normals given or from the faces' planes.
-    } else if (ignored.insert(std::string(key)).second) {
-      result.warnings.push_back(here + ": '" + std::string(key) + "' is not used by Bounce; ignored");
-    }
-  }
+      });
 
   for (object_builder& obj : objects)
     if (!std::get<polygon_mesh>(obj.out.geometry).faces.empty()) result.surfaces.push_back(std::move(obj.out));
