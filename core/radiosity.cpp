@@ -78,24 +78,31 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   state->source = &s;
   state->params = params;
   state->form_factors = make_form_factor_context(mesh, params.form_factors);
-  state->radiosity = mesh.vertex_emission;
-  state->direct.assign(mesh.vertex_count(), rgb(0.0));
-  state->unshot.assign(mesh.element_count(), rgb(0.0));
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    state->unshot[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
-    state->balance.emitted += state->unshot[e] * mesh.element_areas[e];
-  }
-  state->unshot_emission = state->unshot;
-  state->lights_shot = s.lights.empty();
   state->scratch.assign(mesh.vertex_count(), 0.0);
   state->patch_power.assign(mesh.patch_count(), 0.0);
   state->patch_elements.assign(mesh.patch_count(), {});
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     state->patch_elements[mesh.element_patches[e]].push_back(int(e));
-  update_fraction(*state);
-  if (!state->lights_shot) state->stats.unshot_fraction = 1.0;  // the lights' power is still to come
+  restart_radiosity(*state);
   return state;
+}
+
+void restart_radiosity(radiosity_state& state) {
+  const patch_mesh& mesh = *state.mesh;
+  state.radiosity = mesh.vertex_emission;
+  state.direct.assign(mesh.vertex_count(), rgb(0.0));
+  state.unshot.assign(mesh.element_count(), rgb(0.0));
+  state.balance = {};
+  state.stats = {};
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    state.unshot[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
+    state.balance.emitted += state.unshot[e] * mesh.element_areas[e];
+  }
+  state.unshot_emission = state.unshot;
+  state.lights_shot = state.source->lights.empty();
+  update_fraction(state);
+  if (!state.lights_shot) state.stats.unshot_fraction = 1.0;  // the lights' power is still to come
 }
 
 bool step_radiosity(radiosity_state& state) {

@@ -68,6 +68,9 @@ struct radiosity_state {
 std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
                                                       const radiosity_params& params);
 
+// Back to B = E, U = M E, keeping the form-factor method (and its BVH).
+void restart_radiosity(radiosity_state& state);
+
 // One step: point lights first (all of them, with shadow rays), then one
 // element shot. Returns false when nothing is left to shoot.
 bool step_radiosity(radiosity_state& state);

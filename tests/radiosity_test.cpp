@@ -266,6 +266,22 @@ TEST(Radiosity, RerunGivesTheSameNumbers) {
   EXPECT_EQ(a->radiosity, b->radiosity);  // bit for bit, threads or not
 }
 
+TEST(Radiosity, RestartStartsOverWithTheSameResult) {
+  scene s = cornell();
+  patch_mesh mesh = mesh_of(s, 150.0);
+  auto state = make_radiosity_state(s, mesh, with_rays(4));
+  run_until(*state, 1e-2);
+  const std::vector<rgb> first = state->radiosity;
+  const std::uint64_t shots = state->stats.shots;
+  restart_radiosity(*state);
+  EXPECT_EQ(state->stats.shots, 0u);
+  EXPECT_EQ(state->stats.unshot_fraction, 1.0);
+  EXPECT_EQ(state->radiosity, mesh.vertex_emission);
+  run_until(*state, 1e-2);
+  EXPECT_EQ(state->stats.shots, shots);
+  EXPECT_EQ(state->radiosity, first);
+}
+
 TEST(Radiosity, ScaleDoesNotChangeTheAnswer) {
   scene unit = cornell(1.0);
   patch_mesh base_mesh = mesh_of(unit, 150.0);

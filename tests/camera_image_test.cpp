@@ -1,0 +1,93 @@
+// Camera matrices and image files.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "camera_math.h"
+#include "image.h"
+#include "test_files.h"
+
+namespace bounce {
+namespace {
+
+using testing::scratch_dir;
+
+camera cornell_camera() {
+  camera c;
+  c.eye = vec3(278, 273, -800);
+  c.target = vec3(278, 273, 0);
+  c.up = vec3(0, 1, 0);
+  c.fov_y_degrees = 39.3;
+  c.width = 512;
+  c.height = 256;
+  return c;
+}
+
+TEST(CameraMath, ProjectionAndRaysAgree) {
+  const camera c = cornell_camera();
+  const bounds3 box{vec3(0.0), vec3(556, 548.8, 559.2)};
+  const glm::dmat4 clip = projection_matrix(c, box) * view_matrix(c);
+  // A point along the ray through a pixel projects back onto that pixel.
+  for (auto [x, y] : {std::pair{256.0, 128.0}, std::pair{10.5, 3.5}, std::pair{500.0, 250.0}}) {
+    const vec3 p = c.eye + camera_ray_direction(c, x, y) * 900.0;
+    const glm::dvec4 q = clip * glm::dvec4(p, 1.0);
+    const double px = (q.x / q.w * 0.5 + 0.5) * c.width;
+    const double py = (1.0 - (q.y / q.w * 0.5 + 0.5)) * c.height;  // image rows go down
+    EXPECT_NEAR(px, x, 1e-9);
+    EXPECT_NEAR(py, y, 1e-9);
+    EXPECT_GT(q.z / q.w, -1.0);  // inside the depth range
+    EXPECT_LT(q.z / q.w, 1.0);
+  }
+  // The centre ray looks at the target; the top edge is half the field of view up.
+  EXPECT_NEAR(glm::length(camera_ray_direction(c, 256, 128) - vec3(0, 0, 1)), 0.0, 1e-12);
+  const vec3 top = camera_ray_direction(c, 256, 0);
+  EXPECT_NEAR(glm::degrees(std::atan2(top.y, top.z)), 39.3 / 2, 1e-9);
+  // Right in the image is -x for this camera (the red wall, x = 556, is on the left).
+  EXPECT_LT(camera_ray_direction(c, 511, 128).x, 0.0);
+}
+
+TEST(ImageFiles, PfmRoundTripIsExact) {
+  scratch_dir dir;
+  image img;
+  img.width = 3;
+  img.height = 2;
+  for (int i = 0; i < 18; ++i) img.pixels.push_back(float(i) * 0.37f - 1.0f);
+  std::string error;
+  ASSERT_TRUE(write_pfm(dir.path("a.pfm"), img, error)) << error;
+  image back;
+  ASSERT_TRUE(read_pfm(dir.path("a.pfm"), back, error)) << error;
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.height, 2);
+  EXPECT_EQ(back.pixels, img.pixels);
+  EXPECT_EQ(back.at(2, 1), rgb(img.pixels[15], img.pixels[16], img.pixels[17]));
+  // Bottom-up storage: the first stored row is the image's last.
+  std::ifstream raw(dir.path("a.pfm"), std::ios::binary);
+  std::string header((std::istreambuf_iterator<char>(raw)), {});
+  float first;
+  std::memcpy(&first, header.data() + header.find("-1.0\n") + 5, sizeof first);
+  EXPECT_EQ(first, img.pixels[9]);
+}
+
+TEST(ImageFiles, PngRoundTripAndErrors) {
+  scratch_dir dir;
+  const unsigned char pixels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 10, 20, 30};
+  std::string error;
+  ASSERT_TRUE(write_png(dir.path("a.png"), 2, 2, 3, pixels, error)) << error;
+  int w = 0, h = 0;
+  std::vector<unsigned char> back;
+  ASSERT_TRUE(read_png_rgb8(dir.path("a.png"), w, h, back, error)) << error;
+  EXPECT_EQ(w, 2);
+  EXPECT_EQ(h, 2);
+  EXPECT_EQ(back, std::vector<unsigned char>(pixels, pixels + 12));
+  EXPECT_FALSE(write_png("/nonexistent/dir/a.png", 2, 2, 3, pixels, error));
+  EXPECT_NE(error.find("/nonexistent/dir/a.png"), std::string::npos);
+  image img;
+  EXPECT_FALSE(read_pfm(dir.path("a.png"), img, error));
+  EXPECT_NE(error.find("not a little-endian colour PFM"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace bounce
