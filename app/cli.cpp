@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 
@@ -11,6 +12,7 @@
 
 #include "patch_mesh.h"
 #include "radiosity.h"
+#include "render_command.h"
 #include "scene_info.h"
 #include "scene_io.h"
 #include "solve_command.h"
@@ -293,6 +295,22 @@ int run_cli(int argc, char** argv) {
     add_solver_options(*c.app, c.solver);
     add_camera_options(*c.app, c.camera);
   }
+  render_options render_extra;
+  CLI::App* render = commands[1].app;
+  render->add_option("--out", render_extra.png_path, "PNG of the Gouraud view (tone-mapped)")->capture_default_str();
+  render->add_option("--pfm", render_extra.pfm_path, "PFM of the same view in linear radiance, unscaled");
+  render->add_option("--frames", render_extra.frames_dir, "also write one PNG per --frame-every shots into DIR");
+  render->add_option("--frame-every", render_extra.frame_every, "shots between frames")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  render->add_option("--exposure", render_extra.exposure, "displayed value = radiance x exposure")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  render->add_option("--tone", render_extra.curve, "tone curve")
+      ->check(CLI::IsMember({"srgb", "filmic"}))
+      ->capture_default_str();
+  render->add_flag("--wireframe", render_extra.wireframe, "draw element edges");
+  render->add_flag("--ambient", render_extra.ambient, "add the ambient term of the unshot power (display only)");
   solve_options solve_extra;
   commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
   commands[3].app->add_flag("--reference", solve_extra.reference,
@@ -309,6 +327,11 @@ int run_cli(int argc, char** argv) {
   }
 
   if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
+  if (render->parsed()) {
+    scene s;
+    if (!load_for_command(commands[1].scene, &commands[1].camera, s)) return exit_input_error;
+    return run_render(s, commands[1].solver, render_extra);
+  }
   if (commands[3].app->parsed()) {
     scene s;
     if (!load_for_command(commands[3].scene, &commands[3].camera, s)) return exit_input_error;
@@ -318,11 +341,15 @@ int run_cli(int argc, char** argv) {
     if (c.app->parsed()) return run_not_built(c.name, c.issue, c.scene, &c.camera);
   if (bench->parsed()) return run_not_built("bench", "benchmarks arrive with issue #6", "", nullptr);
 
-  // No subcommand: the main job. Until the viewer and the headless render
-  // exist, show what the default scene holds.
-  std::cout << "bounce: the window and the headless render arrive with issue #4;\n"
-               "showing `bounce info` for the embedded default scene instead.\n\n";
-  return run_info("", false, 0.0);
+  // No subcommand: the main job on the embedded Cornell box. The window
+  // arrives with the viewer; until then, and always without a display, a
+  // headless render to bounce.png in the current folder.
+  const char* display = std::getenv("DISPLAY");
+  std::cout << (display && *display ? "bounce: the window is not built yet (issue #4); rendering headless instead\n"
+                                    : "bounce: no display; rendering headless\n");
+  scene s;
+  if (!load_for_command("", nullptr, s)) return exit_input_error;
+  return run_render(s, solver_options{}, render_options{});
 }
 
 }  // namespace bounce

@@ -57,13 +57,6 @@ TEST(Cli, SolvingCommandsShareOptions) {
   }
 }
 
-TEST(Cli, NoArgumentsShowsTheDefaultScene) {
-  run_result r = run("");
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("embedded:cornell_box/cornell_box.json"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("triangles:"), std::string::npos) << r.out;
-}
-
 TEST(Cli, InfoJsonOnTheCornellBox) {
   run_result r = run("info " + source_path("assets/cornell_box/cornell_box.json") + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -151,13 +144,13 @@ TEST(Cli, CameraOverridesAreChecked) {
 }
 
 TEST(Cli, CommandsNotBuiltYetSaySoAndFail) {
-  for (const char* command : {"view", "render", "trace", "bench"}) {
+  for (const char* command : {"view", "trace", "bench"}) {
     run_result r = run(command);
     EXPECT_EQ(r.code, 3) << command;
     EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command << ": " << r.err;
   }
   // Valid overrides pass the checks and still reach the honest refusal.
-  run_result r = run("render --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
+  run_result r = run("trace --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
   EXPECT_EQ(r.code, 3) << r.err;
 }
 

@@ -1,0 +1,45 @@
+// Headless pictures: an OSMesa context with multisampled framebuffers, the
+// shared mesh renderer drawing into them, and read-back as 8-bit sRGB or
+// linear float radiance.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "image.h"
+#include "mesh_renderer.h"
+#include "osmesa_context.h"
+
+namespace bounce::headless {
+
+class offscreen_view {
+ public:
+  // A width x height view with 4x MSAA (antialiased edges, emitters' rims
+  // included). ok() is false, with error(), when GL is unavailable.
+  offscreen_view(int width, int height);
+  ~offscreen_view();
+
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+  gl::mesh_renderer& renderer() { return *renderer_; }
+
+  // Draws and reads back RGBA8, top row first.
+  std::vector<unsigned char> render_rgba8(const glm::mat4& view_projection, const glm::vec3& eye,
+                                          const gl::display_settings& settings);
+  // Draws linear radiance (the settings' tone curve is ignored) into float
+  // buffers and reads it back unscaled.
+  image render_linear(const glm::mat4& view_projection, const glm::vec3& eye, gl::display_settings settings);
+
+ private:
+  struct target;
+  void draw_into(target& t, const glm::mat4& view_projection, const glm::vec3& eye,
+                 const gl::display_settings& settings);
+  osmesa_context context_;
+  std::unique_ptr<gl::mesh_renderer> renderer_;
+  std::unique_ptr<target> bytes_, floats_;
+  int width_, height_;
+  std::string error_;
+};
+
+}  // namespace bounce::headless

@@ -1,0 +1,115 @@
+#include "mesh_renderer.h"
+
+#include <vector>
+
+#include <glad/gl.h>
+
+#include "gl_program.h"
+#include "shader_files.h"
+
+namespace bounce::gl {
+
+mesh_renderer::~mesh_renderer() {
+  // The context may already be gone when a renderer outlives it; the
+  // owner destroys the renderer first (see headless and viewer).
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+  const unsigned int buffers[] = {static_buffer_, dynamic_buffer_, index_buffer_};
+  for (unsigned int b : buffers)
+    if (b) glDeleteBuffers(1, &b);
+  if (program_) glDeleteProgram(program_);
+  if (wire_program_) glDeleteProgram(wire_program_);
+}
+
+bool mesh_renderer::init(std::string& error) {
+  const shader_source vertex = shader_file("gouraud.vert");
+  program_ = make_program(vertex, shader_file("gouraud.frag"), error);
+  if (!program_) return false;
+  wire_program_ = make_program(vertex, shader_file("wire.frag"), error);
+  if (!wire_program_) return false;
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &static_buffer_);
+  glGenBuffers(1, &dynamic_buffer_);
+  glGenBuffers(1, &index_buffer_);
+  return true;
+}
+
+void mesh_renderer::upload(const patch_mesh& mesh) {
+  vertex_count_ = mesh.vertex_count();
+  // Static: position, normal, reflectance, interleaved.
+  std::vector<float> data;
+  data.reserve(vertex_count_ * 9);
+  for (std::size_t v = 0; v < vertex_count_; ++v) {
+    for (int k = 0; k < 3; ++k) data.push_back(float(mesh.positions[v][k]));
+    for (int k = 0; k < 3; ++k) data.push_back(float(mesh.normals[v][k]));
+    for (int k = 0; k < 3; ++k) data.push_back(float(mesh.vertex_rho[v][k]));
+  }
+  std::vector<unsigned int> indices;
+  indices.reserve(mesh.element_count() * 3);
+  for (const glm::ivec3& t : mesh.elements)
+    for (int k = 0; k < 3; ++k) indices.push_back(unsigned(t[k]));
+  index_count_ = int(indices.size());
+
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, static_buffer_);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
+  const GLsizei stride = 9 * sizeof(float);
+  for (GLuint attribute = 0; attribute < 3; ++attribute) {
+    glEnableVertexAttribArray(attribute);
+    glVertexAttribPointer(attribute, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(std::uintptr_t(attribute * 3 * sizeof(float))));
+  }
+  // Dynamic: radiosity then unshot, two blocks, rewritten every step.
+  glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertex_count_ * 6 * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(4);
+  glVertexAttribPointer(4, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float),
+                        reinterpret_cast<const void*>(std::uintptr_t(vertex_count_ * 3 * sizeof(float))));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(unsigned int)), indices.data(),
+               GL_STATIC_DRAW);
+  glBindVertexArray(0);
+}
+
+void mesh_renderer::update(const radiosity_snapshot& snapshot) {
+  glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(vertex_count_ * 3 * sizeof(float)), snapshot.radiosity.data());
+  glBufferSubData(GL_ARRAY_BUFFER, GLintptr(vertex_count_ * 3 * sizeof(float)),
+                  GLsizeiptr(vertex_count_ * 3 * sizeof(float)), snapshot.unshot_vertex.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  ambient_ = glm::vec3(snapshot.ambient);
+}
+
+void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,
+                         const display_settings& settings) const {
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // rooms are seen from inside; back faces are shown (or highlighted)
+  glBindVertexArray(vao_);
+  glUseProgram(program_);
+  glUniformMatrix4fv(glGetUniformLocation(program_, "view_projection"), 1, GL_FALSE, &view_projection[0][0]);
+  const glm::vec3 ambient = settings.ambient ? ambient_ : glm::vec3(0.0f);
+  glUniform3fv(glGetUniformLocation(program_, "ambient"), 1, &ambient[0]);
+  glUniform3fv(glGetUniformLocation(program_, "eye"), 1, &eye[0]);
+  glUniform1f(glGetUniformLocation(program_, "exposure"), float(settings.exposure));
+  glUniform1i(glGetUniformLocation(program_, "tone_curve"), int(settings.curve));
+  glUniform1i(glGetUniformLocation(program_, "false_colour"), int(settings.colours));
+  glUniform1i(glGetUniformLocation(program_, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  if (settings.wireframe) {
+    // Edges pulled slightly towards the eye so they win the depth test.
+    glUseProgram(wire_program_);
+    glUniformMatrix4fv(glGetUniformLocation(wire_program_, "view_projection"), 1, GL_FALSE, &view_projection[0][0]);
+    glUniform4f(glGetUniformLocation(wire_program_, "colour"), 0.0f, 0.0f, 0.0f, 1.0f);
+    glEnable(GL_POLYGON_OFFSET_LINE);
+    glPolygonOffset(-1.0f, -1.0f);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_POLYGON_OFFSET_LINE);
+  }
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+}  // namespace bounce::gl

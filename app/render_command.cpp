@@ -1,0 +1,95 @@
+#include "render_command.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "camera_math.h"
+#include "offscreen_view.h"
+#include "patch_mesh.h"
+#include "radiosity.h"
+
+namespace bounce {
+namespace {
+
+// RGBA rows to RGB rows (PNG output has no alpha).
+std::vector<unsigned char> drop_alpha(const std::vector<unsigned char>& rgba) {
+  std::vector<unsigned char> rgb;
+  rgb.reserve(rgba.size() / 4 * 3);
+  for (std::size_t i = 0; i < rgba.size(); i += 4)
+    rgb.insert(rgb.end(), rgba.begin() + std::ptrdiff_t(i), rgba.begin() + std::ptrdiff_t(i + 3));
+  return rgb;
+}
+
+}  // namespace
+
+int run_render(const scene& s, const solver_options& solver, const render_options& options) {
+  patch_mesh mesh;
+  std::string error;
+  if (!make_patch_mesh(s, to_mesher_params(solver, s), mesh, error)) {
+    std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
+    return exit_input_error;
+  }
+  headless::offscreen_view view(s.view.width, s.view.height);
+  if (!view.ok()) {
+    std::fprintf(stderr, "error: %s\n", view.error().c_str());
+    return exit_input_error;
+  }
+  view.renderer().upload(mesh);
+  const glm::mat4 view_projection(projection_matrix(s.view, scene_bounds(s)) * view_matrix(s.view));
+  const glm::vec3 eye(s.view.eye);
+  gl::display_settings settings;
+  settings.exposure = options.exposure;
+  settings.curve = options.curve == "filmic" ? gl::tone_curve::filmic : gl::tone_curve::srgb;
+  settings.wireframe = options.wireframe;
+  settings.ambient = options.ambient;
+
+  auto write_frame = [&](const std::string& path) -> bool {
+    const std::vector<unsigned char> rgb = drop_alpha(view.render_rgba8(view_projection, eye, settings));
+    if (!write_png(path, s.view.width, s.view.height, 3, rgb.data(), error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return false;
+    }
+    return true;
+  };
+
+  if (!options.frames_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.frames_dir, ec);
+    if (ec) {
+      std::fprintf(stderr, "error: %s: cannot create the frames folder: %s\n", options.frames_dir.c_str(),
+                   ec.message().c_str());
+      return exit_input_error;
+    }
+  }
+  auto state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
+  bool frames_ok = true;
+  std::size_t frames = 0;
+  run_radiosity(*state, to_stop_criterion(solver), [&](const radiosity_state& st) {
+    if (options.frames_dir.empty() || !frames_ok || st.stats.shots % std::uint64_t(options.frame_every) != 0) return;
+    view.renderer().update(*make_snapshot(st));
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(st.stats.shots));
+    frames_ok = write_frame((std::filesystem::path(options.frames_dir) / name).string());
+    ++frames;
+  });
+  if (!frames_ok) return exit_input_error;
+
+  view.renderer().update(*make_snapshot(*state));
+  if (!write_frame(options.png_path)) return exit_input_error;
+  std::printf("solved: %llu shots, unshot %.4f%%, %zu elements, %.3f s\n",
+              static_cast<unsigned long long>(state->stats.shots), 100.0 * state->stats.unshot_fraction,
+              mesh.element_count(), state->stats.seconds);
+  std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(options.png_path).string().c_str(), s.view.width,
+              s.view.height);
+  if (!options.pfm_path.empty()) {
+    if (!write_pfm(options.pfm_path, view.render_linear(view_projection, eye, settings), error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return exit_input_error;
+    }
+    std::printf("wrote %s (linear radiance)\n", options.pfm_path.c_str());
+  }
+  if (frames) std::printf("wrote %zu frames to %s\n", frames, options.frames_dir.c_str());
+  return exit_ok;
+}
+
+}  // namespace bounce

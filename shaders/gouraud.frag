@@ -1,0 +1,48 @@
+#version 330 core
+in vec3 vertex_radiance;
+in vec3 vertex_unshot;
+in vec3 world_normal;
+in vec3 world_position;
+
+uniform float exposure;
+uniform int tone_curve;        // 0: clamp + sRGB, 1: filmic (ACES fit) + sRGB, 2: linear radiance (PFM)
+uniform int false_colour;      // 0: radiance, 1: unshot power (log scale heat map)
+uniform int highlight_back_faces;
+uniform vec3 eye;
+
+out vec4 fragment;
+
+vec3 srgb(vec3 linear) {
+  linear = clamp(linear, 0.0, 1.0);
+  return mix(12.92 * linear, 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), linear));
+}
+
+// Narkowicz's fit of the ACES filmic curve.
+vec3 filmic(vec3 x) {
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+// Blue (low) to red (high) over eight decades, for false colour.
+vec3 heat(float value) {
+  float t = clamp((log(max(value, 1e-30)) / log(10.0) + 6.0) / 8.0, 0.0, 1.0);
+  return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
+}
+
+void main() {
+  if (highlight_back_faces != 0 && dot(world_normal, eye - world_position) < 0.0) {
+    fragment = vec4(1.0, 0.0, 1.0, 1.0);  // magenta: a flipped normal faces the camera
+    return;
+  }
+  if (false_colour == 1) {
+    fragment = vec4(srgb(heat(dot(vertex_unshot, vec3(1.0)))), 1.0);
+    return;
+  }
+  vec3 value = vertex_radiance * exposure;
+  if (tone_curve == 2) {
+    fragment = vec4(vertex_radiance, 1.0);  // linear radiance, unscaled
+  } else if (tone_curve == 1) {
+    fragment = vec4(srgb(filmic(value)), 1.0);
+  } else {
+    fragment = vec4(srgb(value), 1.0);
+  }
+}

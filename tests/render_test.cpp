@@ -1,0 +1,163 @@
+// Headless pictures through OSMesa, made by `bounce render` as a user
+// would: golden images with stated tolerances, and exact radiance checks.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "camera_math.h"
+#include "image.h"
+#include "test_files.h"
+
+namespace bounce {
+namespace {
+
+using testing::scratch_dir;
+using testing::source_path;
+
+int run(const std::string& args) {
+  const std::string command = std::string(BOUNCE_EXE) + " " + args + " >/dev/null 2>&1 </dev/null";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Compares a rendered PNG with a golden one: mean and 99.9th percentile of
+// the absolute difference in 8-bit units. On failure the rendered,
+// reference and difference images stay in the build folder.
+void expect_matches_golden(const std::string& rendered, const std::string& golden_name, double max_mean,
+                           double max_p999) {
+  const std::string golden = source_path("tests/golden/" + golden_name);
+  int w = 0, h = 0, gw = 0, gh = 0;
+  std::vector<unsigned char> a, b;
+  std::string error;
+  ASSERT_TRUE(read_png_rgb8(rendered, w, h, a, error)) << error;
+  ASSERT_TRUE(read_png_rgb8(golden, gw, gh, b, error)) << error;
+  ASSERT_EQ(w, gw);
+  ASSERT_EQ(h, gh);
+  std::vector<int> diff(a.size());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    diff[i] = std::abs(int(a[i]) - int(b[i]));
+    sum += diff[i];
+  }
+  const double mean = sum / double(a.size());
+  std::vector<int> sorted = diff;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(0.999 * (sorted.size() - 1)), sorted.end());
+  const double p999 = sorted[std::size_t(0.999 * (sorted.size() - 1))];
+  EXPECT_LE(mean, max_mean) << golden_name;
+  EXPECT_LE(p999, max_p999) << golden_name;
+  if (mean > max_mean || p999 > max_p999) {
+    const std::filesystem::path out = std::filesystem::path(BOUNCE_BINARY_DIR) / "image_test_output";
+    std::filesystem::create_directories(out);
+    std::filesystem::copy_file(rendered, out / ("rendered_" + golden_name),
+                               std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(golden, out / ("reference_" + golden_name),
+                               std::filesystem::copy_options::overwrite_existing);
+    std::vector<unsigned char> d(diff.size());
+    for (std::size_t i = 0; i < diff.size(); ++i) d[i] = static_cast<unsigned char>(std::min(255, diff[i] * 8));
+    write_png((out / ("difference_" + golden_name)).string(), w, h, 3, d.data(), error);
+    ADD_FAILURE() << "images written to " << out;
+  }
+}
+
+// Tolerances: llvmpipe is deterministic on one machine; the margins allow
+// other CPUs' float rounding and a few flipped shadow rays.
+constexpr double max_mean = 1.0, max_p999 = 24.0;
+const std::string common = "render --size 128x128 --max-edge 60 ";
+
+TEST(HeadlessImages, CornellBoxAfterOneShot) {
+  scratch_dir dir;
+  ASSERT_EQ(run(common + "--max-shots 1 --out " + dir.path("a.png")), 0);
+  expect_matches_golden(dir.path("a.png"), "cornell_1_shot.png", max_mean, max_p999);
+}
+
+TEST(HeadlessImages, CornellBoxAfterTenShots) {
+  scratch_dir dir;
+  ASSERT_EQ(run(common + "--max-shots 10 --out " + dir.path("a.png")), 0);
+  expect_matches_golden(dir.path("a.png"), "cornell_10_shots.png", max_mean, max_p999);
+}
+
+TEST(HeadlessImages, CornellBoxConverged) {
+  scratch_dir dir;
+  ASSERT_EQ(run(common + "--until 0.001 --out " + dir.path("a.png")), 0);
+  expect_matches_golden(dir.path("a.png"), "cornell_converged.png", max_mean, max_p999);
+}
+
+TEST(HeadlessImages, EmitterPixelsShowTheirRadiance) {
+  // After the first shot the light has received nothing: its pixels are
+  // exactly its Ke = (17, 12, 4) in the linear PFM.
+  scratch_dir dir;
+  ASSERT_EQ(run("render --size 256x256 --max-edge 60 --max-shots 1 --out " + dir.path("a.png") + " --pfm " +
+                dir.path("a.pfm")),
+            0);
+  image img;
+  std::string error;
+  ASSERT_TRUE(read_pfm(dir.path("a.pfm"), img, error)) << error;
+  camera c;
+  c.eye = vec3(278, 273, -800);
+  c.target = vec3(278, 273, 0);
+  c.fov_y_degrees = 39.3;
+  c.width = c.height = 256;
+  const bounds3 box{vec3(0.0), vec3(556, 548.8, 559.2)};
+  const glm::dvec4 q = projection_matrix(c, box) * view_matrix(c) * glm::dvec4(278, 548.8, 279.5, 1.0);
+  const int x = int((q.x / q.w * 0.5 + 0.5) * 256), y = int((1 - (q.y / q.w * 0.5 + 0.5)) * 256);
+  const rgb light = img.at(x, y);
+  EXPECT_NEAR(light.r, 17.0, 17.0 * 1e-5);
+  EXPECT_NEAR(light.g, 12.0, 12.0 * 1e-5);
+  EXPECT_NEAR(light.b, 4.0, 4.0 * 1e-5);
+}
+
+TEST(HeadlessImages, FurnaceRendersItsExactRadianceEverywhere) {
+  // Ke = 1, rho = 0.5: radiance Ke / (1 - rho) = 2 on every pixel.
+  scratch_dir dir;
+  ASSERT_EQ(run("render " + source_path("assets/furnace/furnace.json") + " --size 64x64 --max-edge 0.5 --until 1e-6 " +
+                "--out " + dir.path("a.png") + " --pfm " + dir.path("a.pfm")),
+            0);
+  image img;
+  std::string error;
+  ASSERT_TRUE(read_pfm(dir.path("a.pfm"), img, error)) << error;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(img.at(x, y)[c], 2.0, 2.0 * 0.005) << x << "," << y;
+}
+
+TEST(HeadlessImages, FramesAreWrittenDuringTheSolve) {
+  scratch_dir dir;
+  ASSERT_EQ(run("render --size 64x64 --max-edge 100 --max-shots 6 --frame-every 2 --frames " + dir.path("frames") +
+                " --out " + dir.path("a.png")),
+            0);
+  for (const char* name : {"frame_000002.png", "frame_000004.png", "frame_000006.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir.path("frames/") + name)) << name;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("frames/frame_000001.png")));
+  // Each frame shows more light than the one before.
+  double previous = -1.0;
+  for (const char* name : {"frame_000002.png", "frame_000004.png", "frame_000006.png"}) {
+    int w = 0, h = 0;
+    std::vector<unsigned char> rgb;
+    std::string error;
+    ASSERT_TRUE(read_png_rgb8(dir.path("frames/") + name, w, h, rgb, error)) << error;
+    double sum = 0.0;
+    for (unsigned char v : rgb) sum += v;
+    EXPECT_GT(sum, previous) << name;
+    previous = sum;
+  }
+}
+
+TEST(HeadlessImages, NoArgumentsRendersTheDefaultScene) {
+  scratch_dir dir;
+  const std::string command = "cd " + dir.root.string() + " && env -u DISPLAY " + BOUNCE_EXE + " >out.txt 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir.path("bounce.png")));
+  std::ifstream out(dir.path("out.txt"));
+  std::string text((std::istreambuf_iterator<char>(out)), {});
+  EXPECT_NE(text.find("wrote " + dir.path("bounce.png")), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace bounce
