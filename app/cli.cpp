@@ -16,6 +16,7 @@
 #include "scene_info.h"
 #include "scene_io.h"
 #include "solve_command.h"
+#include "viewer.h"
 
 namespace bounce {
 namespace {
@@ -213,33 +214,6 @@ void add_solver_options(CLI::App& command, solver_options& o) {
   command.add_option("--stats", o.stats_path, "write solver statistics as JSON to this file");
 }
 
-radiosity_params to_radiosity_params(const solver_options& o) {
-  radiosity_params p;
-  p.form_factors.method = o.method == "hemicube" ? form_factor_method::hemicube : form_factor_method::raycast;
-  p.form_factors.shadow_rays = o.shadow_rays;
-  p.form_factors.hemicube_resolution = o.hemicube_resolution;
-  p.form_factors.adaptive_rays = !o.full_rays;
-  return p;
-}
-
-mesher_params to_mesher_params(const solver_options& o, const scene& s) {
-  mesher_params p;
-  p.max_edge = o.max_edge > 0.0 ? o.max_edge : default_max_edge(s);
-  // Patches of about 16 elements shoot by default: measured on the Cornell
-  // box, 10x faster to 1e-4 unshot than element shooting, 1.2% mean
-  // deviation from its solution (README).
-  p.patch_edge = o.patch_edge < 0.0 ? 4.0 * p.max_edge : o.patch_edge;
-  return p;
-}
-
-stop_criterion to_stop_criterion(const solver_options& o) {
-  stop_criterion c;
-  c.unshot_fraction = o.until;
-  c.max_shots = static_cast<std::uint64_t>(o.max_shots);
-  c.seconds = o.seconds;
-  return c;
-}
-
 void add_camera_options(CLI::App& command, camera_options& o) {
   command.add_option("--eye", o.eye, "camera position x,y,z");
   command.add_option("--target", o.target, "point looked at x,y,z");
@@ -272,7 +246,7 @@ int run_cli(int argc, char** argv) {
     camera_options camera;
   };
   solving_command commands[] = {
-      {"view", "open the interactive window", "the viewer arrives with issue #4", nullptr, {}, {}, {}},
+      {"view", "open the interactive window", "", nullptr, {}, {}, {}},
       {"render",
        "solve and render the Gouraud view headlessly to PNG/PFM",
        "headless capture arrives with issue #4",
@@ -311,6 +285,12 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   render->add_flag("--wireframe", render_extra.wireframe, "draw element edges");
   render->add_flag("--ambient", render_extra.ambient, "add the ambient term of the unshot power (display only)");
+  render->add_flag("--panel", render_extra.panel, "draw the ImGui panel over the view, as in the window");
+  viewer_options view_extra;
+  CLI::App* view = commands[0].app;
+  view->add_option("--frames", view_extra.frames, "scripted run: draw this many frames")->check(CLI::PositiveNumber);
+  view->add_option("--screenshot", view_extra.screenshot_path, "after the scripted frames, save the window as PNG");
+  view->add_flag("--exit", view_extra.exit_after, "quit after the scripted frames");
   solve_options solve_extra;
   commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
   commands[3].app->add_flag("--reference", solve_extra.reference,
@@ -327,6 +307,11 @@ int run_cli(int argc, char** argv) {
   }
 
   if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
+  if (view->parsed()) {
+    scene s;
+    if (!load_for_command(commands[0].scene, &commands[0].camera, s)) return exit_input_error;
+    return run_viewer(s, commands[0].solver, view_extra);
+  }
   if (render->parsed()) {
     scene s;
     if (!load_for_command(commands[1].scene, &commands[1].camera, s)) return exit_input_error;
@@ -341,14 +326,14 @@ int run_cli(int argc, char** argv) {
     if (c.app->parsed()) return run_not_built(c.name, c.issue, c.scene, &c.camera);
   if (bench->parsed()) return run_not_built("bench", "benchmarks arrive with issue #6", "", nullptr);
 
-  // No subcommand: the main job on the embedded Cornell box. The window
-  // arrives with the viewer; until then, and always without a display, a
-  // headless render to bounce.png in the current folder.
-  const char* display = std::getenv("DISPLAY");
-  std::cout << (display && *display ? "bounce: the window is not built yet (issue #4); rendering headless instead\n"
-                                    : "bounce: no display; rendering headless\n");
+  // No subcommand: the main job on the embedded Cornell box: the window
+  // when there is a display, otherwise a headless render to bounce.png in
+  // the current folder.
   scene s;
   if (!load_for_command("", nullptr, s)) return exit_input_error;
+  const char* display = std::getenv("DISPLAY");
+  if (display && *display) return run_viewer(s, solver_options{}, viewer_options{});
+  std::cout << "bounce: no display; rendering headless\n";
   return run_render(s, solver_options{}, render_options{});
 }
 

@@ -2,9 +2,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include "camera_math.h"
 #include "offscreen_view.h"
+#include "panel.h"
 #include "patch_mesh.h"
 #include "radiosity.h"
 
@@ -43,8 +48,50 @@ int run_render(const scene& s, const solver_options& solver, const render_option
   settings.wireframe = options.wireframe;
   settings.ambient = options.ambient;
 
+  // The panel, headless: ImGui needs no platform backend, only a display
+  // size and a few frames to lay its windows out.
+  std::unique_ptr<radiosity_state> state;
+  std::vector<convergence_point> history;
+  struct imgui_scope {
+    bool active = false;
+    ~imgui_scope() {
+      if (!active) return;
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui::DestroyContext();
+    }
+  } imgui;
+  std::function<void()> overlay;
+  if (options.panel) {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(float(s.view.width), float(s.view.height));
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    imgui.active = true;
+    overlay = [&] {
+      worker_view v;
+      v.source = std::shared_ptr<const scene>(&s, [](const scene*) {});
+      v.mesh = std::shared_ptr<const patch_mesh>(&mesh, [](const patch_mesh*) {});
+      v.solution = make_snapshot(*state);
+      v.history = history;
+      v.converged = true;
+      panel_state panel;
+      panel.scene_path = s.source;
+      panel.solver = solver;
+      panel.display = settings;
+      for (int frame = 0; frame < 3; ++frame) {
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui::NewFrame();
+        draw_panel(panel, v, 0.0);
+        ImGui::Render();
+      }
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    };
+  }
+
   auto write_frame = [&](const std::string& path) -> bool {
-    const std::vector<unsigned char> rgb = drop_alpha(view.render_rgba8(view_projection, eye, settings));
+    const std::vector<unsigned char> rgb = drop_alpha(view.render_rgba8(view_projection, eye, settings, overlay));
     if (!write_png(path, s.view.width, s.view.height, 3, rgb.data(), error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return false;
@@ -61,10 +108,11 @@ int run_render(const scene& s, const solver_options& solver, const render_option
       return exit_input_error;
     }
   }
-  auto state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
+  state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
   bool frames_ok = true;
   std::size_t frames = 0;
   run_radiosity(*state, to_stop_criterion(solver), [&](const radiosity_state& st) {
+    if (options.panel) history.push_back({st.stats.seconds, st.stats.unshot_fraction});
     if (options.frames_dir.empty() || !frames_ok || st.stats.shots % std::uint64_t(options.frame_every) != 0) return;
     view.renderer().update(*make_snapshot(st));
     char name[64];

@@ -17,6 +17,7 @@ struct render_options {
   std::string curve = "srgb";  // srgb | filmic
   bool wireframe = false;
   bool ambient = false;
+  bool panel = false;  // draw the ImGui panel over the view, as the window shows it
 };
 
 int run_render(const scene& s, const solver_options& solver, const render_options& options);

@@ -27,10 +27,11 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
-run_result run(const std::string& args) {
+// Runs bounce with `args`, behind `prefix` (e.g. "env -u DISPLAY").
+run_result run_env(const std::string& prefix, const std::string& args) {
   scratch_dir dir(".run");
   std::string out = dir.path("stdout"), err = dir.path("stderr");
-  std::string command = std::string(BOUNCE_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  std::string command = prefix + " " + std::string(BOUNCE_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
   int status = std::system(command.c_str());
   run_result r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -38,6 +39,8 @@ run_result run(const std::string& args) {
   r.err = slurp(err);
   return r;
 }
+
+run_result run(const std::string& args) { return run_env("", args); }
 
 TEST(Cli, HelpListsEveryCommand) {
   run_result r = run("--help");
@@ -144,7 +147,7 @@ TEST(Cli, CameraOverridesAreChecked) {
 }
 
 TEST(Cli, CommandsNotBuiltYetSaySoAndFail) {
-  for (const char* command : {"view", "trace", "bench"}) {
+  for (const char* command : {"trace", "bench"}) {
     run_result r = run(command);
     EXPECT_EQ(r.code, 3) << command;
     EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command << ": " << r.err;
@@ -152,6 +155,13 @@ TEST(Cli, CommandsNotBuiltYetSaySoAndFail) {
   // Valid overrides pass the checks and still reach the honest refusal.
   run_result r = run("trace --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
   EXPECT_EQ(r.code, 3) << r.err;
+}
+
+TEST(Cli, ViewWithoutADisplaySaysSo) {
+  run_result r = run_env("env -u DISPLAY", "view --max-edge 200");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bounce render"), std::string::npos) << r.err;
 }
 
 TEST(Cli, SolveWritesStatsAndPly) {

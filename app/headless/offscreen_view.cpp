@@ -55,12 +55,13 @@ offscreen_view::~offscreen_view() {
 }
 
 void offscreen_view::draw_into(target& t, const glm::mat4& view_projection, const glm::vec3& eye,
-                               const gl::display_settings& settings) {
+                               const gl::display_settings& settings, const std::function<void()>& overlay) {
   glBindFramebuffer(GL_FRAMEBUFFER, t.msaa_fbo);
   glViewport(0, 0, width_, height_);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   renderer_->draw(view_projection, eye, settings);
+  if (overlay) overlay();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, t.msaa_fbo);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t.resolve_fbo);
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -68,8 +69,9 @@ void offscreen_view::draw_into(target& t, const glm::mat4& view_projection, cons
 }
 
 std::vector<unsigned char> offscreen_view::render_rgba8(const glm::mat4& view_projection, const glm::vec3& eye,
-                                                        const gl::display_settings& settings) {
-  draw_into(*bytes_, view_projection, eye, settings);
+                                                        const gl::display_settings& settings,
+                                                        const std::function<void()>& overlay) {
+  draw_into(*bytes_, view_projection, eye, settings, overlay);
   std::vector<unsigned char> bottom_up(std::size_t(width_) * height_ * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
@@ -84,7 +86,7 @@ image offscreen_view::render_linear(const glm::mat4& view_projection, const glm:
                                     gl::display_settings settings) {
   if (!floats_) floats_ = std::make_unique<target>(width_, height_, GL_RGBA32F);
   settings.curve = gl::tone_curve::linear;
-  draw_into(*floats_, view_projection, eye, settings);
+  draw_into(*floats_, view_projection, eye, settings, {});
   std::vector<float> bottom_up(std::size_t(width_) * height_ * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGB, GL_FLOAT, bottom_up.data());

@@ -3,6 +3,7 @@
 // linear float radiance.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,9 +25,11 @@ class offscreen_view {
   const std::string& error() const { return error_; }
   gl::mesh_renderer& renderer() { return *renderer_; }
 
-  // Draws and reads back RGBA8, top row first.
+  // Draws and reads back RGBA8, top row first. `overlay`, when given, draws
+  // over the view into the same framebuffer (the ImGui panel).
   std::vector<unsigned char> render_rgba8(const glm::mat4& view_projection, const glm::vec3& eye,
-                                          const gl::display_settings& settings);
+                                          const gl::display_settings& settings,
+                                          const std::function<void()>& overlay = {});
   // Draws linear radiance (the settings' tone curve is ignored) into float
   // buffers and reads it back unscaled.
   image render_linear(const glm::mat4& view_projection, const glm::vec3& eye, gl::display_settings settings);
@@ -34,7 +37,7 @@ class offscreen_view {
  private:
   struct target;
   void draw_into(target& t, const glm::mat4& view_projection, const glm::vec3& eye,
-                 const gl::display_settings& settings);
+                 const gl::display_settings& settings, const std::function<void()>& overlay);
   osmesa_context context_;
   std::unique_ptr<gl::mesh_renderer> renderer_;
   std::unique_ptr<target> bytes_, floats_;

@@ -1,0 +1,161 @@
+#include "panel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <imgui.h>
+
+namespace bounce {
+
+const std::vector<std::pair<std::string, std::string>>& shortcuts() {
+  static const std::vector<std::pair<std::string, std::string>> keys = {
+      {"left drag", "orbit"},
+      {"right drag / shift + left drag", "pan"},
+      {"wheel", "zoom"},
+      {"W A S D, Q E", "fly forward, left, back, right, down, up"},
+      {"F", "frame the scene"},
+      {"C", "restore the scene's camera"},
+      {"Space", "pause / resume the solver"},
+      {"N", "one shot"},
+      {"R", "restart the solver"},
+      {"G", "element wireframe"},
+      {"P", "screenshot"},
+      {"H", "this help"},
+      {"Esc", "quit"},
+  };
+  return keys;
+}
+
+std::vector<std::string> find_scenes(const std::string& folder) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+    if (it->path().extension() == ".json") found.push_back(it->path().string());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+namespace {
+
+// Unshot fraction against solver time, resampled to evenly spaced times so
+// the plot's x axis is time, on a log10 scale.
+std::vector<float> resample_log(const std::vector<convergence_point>& history, int samples) {
+  std::vector<float> out;
+  if (history.empty()) return out;
+  const double end = std::max(history.back().seconds, 1e-9);
+  std::size_t j = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double t = end * i / (samples - 1);
+    while (j + 1 < history.size() && history[j + 1].seconds <= t) ++j;
+    out.push_back(float(std::log10(std::max(history[j].unshot_fraction, 1e-12))));
+  }
+  return out;
+}
+
+}  // namespace
+
+panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms) {
+  panel_actions act;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Bounce");
+
+  if (ImGui::CollapsingHeader("Scene")) {
+    char path[1024];
+    std::snprintf(path, sizeof path, "%s", state.scene_path.c_str());
+    if (ImGui::InputText("path", path, sizeof path, ImGuiInputTextFlags_EnterReturnsTrue)) act.open_scene = true;
+    state.scene_path = path;
+    if (ImGui::BeginCombo("assets", "choose...")) {
+      for (const std::string& s : state.asset_scenes)
+        if (ImGui::Selectable(s.c_str())) {
+          state.scene_path = s;
+          act.open_scene = true;
+        }
+      ImGui::EndCombo();
+    }
+    if (ImGui::Button("Open")) act.open_scene = true;
+  }
+  // Errors stay visible whatever is collapsed; the previous scene keeps running.
+  if (!view.error.empty()) ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "%s", view.error.c_str());
+
+  if (ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
+    float max_edge = float(state.solver.max_edge);
+    ImGui::InputFloat("max edge (0: auto)", &max_edge, 0, 0, "%.4g");
+    state.solver.max_edge = std::max(0.0f, max_edge);
+    int method = state.solver.method == "hemicube" ? 1 : 0;
+    ImGui::Combo("form factors", &method, "ray cast\0hemicube\0");
+    state.solver.method = method ? "hemicube" : "raycast";
+    if (method == 0)
+      ImGui::SliderInt("shadow rays", &state.solver.shadow_rays, 1, 64);
+    else
+      ImGui::SliderInt("hemicube", &state.solver.hemicube_resolution, 16, 512);
+    float until = float(std::log10(std::max(state.solver.until, 1e-12)));
+    ImGui::SliderFloat("stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f");
+    state.solver.until = std::pow(10.0, double(until));
+    if (ImGui::Button("Apply (re-mesh)")) act.apply_mesh = true;
+    ImGui::SameLine();
+    if (view.running) {
+      if (ImGui::Button("Pause")) act.pause = true;
+    } else if (ImGui::Button("Start")) {
+      act.resume = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Step")) act.step = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Restart")) act.restart = true;
+  }
+
+  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen) && view.solution && view.mesh) {
+    const radiosity_stats& st = view.solution->stats;
+    ImGui::Text("%s", view.converged ? "converged" : view.running ? "solving" : "paused");
+    ImGui::Text("elements %zu, vertices %zu, patches %zu", view.mesh->element_count(), view.mesh->vertex_count(),
+                view.mesh->patch_count());
+    ImGui::Text("shots %llu, unshot %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
+    const double seconds = std::max(st.seconds, 1e-9);
+    ImGui::Text("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.shots) / seconds, double(st.rays) / seconds * 1e-6,
+                st.seconds);
+    ImGui::Text("frame %.1f ms", frame_ms);
+    const std::vector<float> plot = resample_log(view.history, 120);
+    if (!plot.empty()) {
+      char label[64];
+      std::snprintf(label, sizeof label, "0 .. %.2f s", view.history.back().seconds);
+      ImGui::PlotLines("log10 unshot", plot.data(), int(plot.size()), 0, label, -8.0f, 0.0f, ImVec2(0, 80));
+    }
+  }
+
+  if (ImGui::CollapsingHeader("Display")) {
+    float stops = float(std::log2(state.display.exposure));
+    ImGui::SliderFloat("exposure (stops)", &stops, -8.0f, 8.0f, "%.1f");
+    state.display.exposure = std::exp2(double(stops));
+    int curve = int(state.display.curve) == 1 ? 1 : 0;
+    ImGui::Combo("tone curve", &curve, "sRGB\0filmic\0");
+    state.display.curve = curve ? gl::tone_curve::filmic : gl::tone_curve::srgb;
+    ImGui::Checkbox("wireframe", &state.display.wireframe);
+    ImGui::SameLine();
+    ImGui::Checkbox("ambient term", &state.display.ambient);
+    bool unshot = state.display.colours == gl::false_colour::unshot;
+    ImGui::Checkbox("false colour: unshot", &unshot);
+    state.display.colours = unshot ? gl::false_colour::unshot : gl::false_colour::none;
+    ImGui::Checkbox("highlight back faces", &state.display.highlight_back_faces);
+    if (ImGui::Button("Frame scene")) act.frame_scene = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Scene camera")) act.reset_camera = true;
+    if (ImGui::Button("Screenshot")) act.screenshot = true;
+    ImGui::SameLine();
+    ImGui::Checkbox("with panel", &state.screenshot_with_panel);
+  }
+  if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
+  if (ImGui::Button("Help (H)")) state.show_help = true;
+  ImGui::End();
+
+  if (state.show_help) {
+    ImGui::Begin("Keyboard and mouse", &state.show_help, ImGuiWindowFlags_AlwaysAutoResize);
+    for (const auto& [key, what] : shortcuts()) ImGui::Text("%-30s %s", key.c_str(), what.c_str());
+    ImGui::End();
+  }
+  return act;
+}
+
+}  // namespace bounce

@@ -1,0 +1,193 @@
+#include "solver_worker.h"
+
+#include <chrono>
+
+#include "scene_io.h"
+
+namespace bounce {
+
+struct solver_worker::command {
+  enum class kind { load, load_file, pause, resume, step, restart, criterion } what;
+  scene s;
+  std::string path;
+  solver_options options;
+  stop_criterion criterion;
+};
+
+solver_worker::solver_worker() : view_(std::make_shared<worker_view>()) {
+  thread_ = std::thread([this] { run(); });
+}
+
+solver_worker::~solver_worker() {
+  {
+    std::lock_guard lock(mutex_);
+    quit_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void solver_worker::enqueue(std::unique_ptr<command> c) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(std::move(c));
+    idle_ = false;
+  }
+  wake_.notify_all();
+}
+
+void solver_worker::load(scene s, const solver_options& options) {
+  auto c = std::make_unique<command>();
+  c->what = command::kind::load;
+  c->s = std::move(s);
+  c->options = options;
+  enqueue(std::move(c));
+}
+
+void solver_worker::load_file(const std::string& path, const solver_options& options) {
+  auto c = std::make_unique<command>();
+  c->what = command::kind::load_file;
+  c->path = path;
+  c->options = options;
+  enqueue(std::move(c));
+}
+
+void solver_worker::send(int what) {
+  auto c = std::make_unique<command>();
+  c->what = static_cast<command::kind>(what);
+  enqueue(std::move(c));
+}
+
+void solver_worker::pause() {
+  send(int(command::kind::pause));
+}
+void solver_worker::resume() {
+  send(int(command::kind::resume));
+}
+void solver_worker::step() {
+  send(int(command::kind::step));
+}
+void solver_worker::restart() {
+  send(int(command::kind::restart));
+}
+
+void solver_worker::set_criterion(const stop_criterion& criterion) {
+  auto c = std::make_unique<command>();
+  c->what = command::kind::criterion;
+  c->criterion = criterion;
+  enqueue(std::move(c));
+}
+
+void solver_worker::wait_idle() const {
+  while (!idle_.load()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+}
+
+void solver_worker::handle(command& c) {
+  using kind = command::kind;
+  switch (c.what) {
+    case kind::load_file: {
+      load_report report;
+      scene s;
+      if (!load_scene(c.path, s, report)) {
+        error_ = report.error;  // the previous scene stays
+        return;
+      }
+      c.s = std::move(s);
+      [[fallthrough]];
+    }
+    case kind::load: {
+      auto s = std::make_shared<const scene>(std::move(c.s));
+      auto mesh = std::make_shared<patch_mesh>();
+      std::string error;
+      if (!make_patch_mesh(*s, to_mesher_params(c.options, *s), *mesh, error)) {
+        error_ = s->source + ": " + error;
+        return;
+      }
+      // The old state refers to the old mesh: replace both together.
+      state_.reset();
+      scene_ = s;
+      mesh_ = mesh;
+      state_ = make_radiosity_state(*scene_, *mesh_, to_radiosity_params(c.options));
+      criterion_ = to_stop_criterion(c.options);
+      ++mesh_version_;
+      history_.clear();
+      error_.clear();
+      paused_ = false;
+      exhausted_ = false;
+      break;
+    }
+    case kind::pause:
+      paused_ = true;
+      break;
+    case kind::resume:
+      paused_ = false;
+      break;
+    case kind::step:
+      paused_ = true;
+      single_step_ = true;
+      break;
+    case kind::restart:
+      if (state_) {
+        restart_radiosity(*state_);
+        history_.clear();
+        paused_ = false;
+        exhausted_ = false;
+      }
+      break;
+    case kind::criterion:
+      criterion_ = c.criterion;
+      break;
+  }
+}
+
+void solver_worker::publish() {
+  auto v = std::make_shared<worker_view>();
+  v->mesh_version = mesh_version_;
+  v->source = scene_;
+  v->mesh = mesh_;
+  if (state_) v->solution = make_snapshot(*state_);
+  v->history = history_;
+  v->error = error_;
+  if (state_) {
+    const radiosity_stats& st = state_->stats;
+    const bool by_fraction =
+        criterion_.unshot_fraction > 0 && state_->lights_shot && st.unshot_fraction <= criterion_.unshot_fraction;
+    const bool by_shots = criterion_.max_shots > 0 && st.shots >= criterion_.max_shots;
+    const bool by_time = criterion_.seconds > 0 && st.seconds >= criterion_.seconds;
+    v->converged = exhausted_ || by_fraction || by_shots || by_time;
+    v->running = !paused_ && !v->converged;
+  }
+  std::atomic_store(&view_, std::shared_ptr<const worker_view>(std::move(v)));
+}
+
+void solver_worker::run() {
+  publish();
+  for (;;) {
+    std::unique_ptr<command> next;
+    {
+      std::unique_lock lock(mutex_);
+      const bool work = state_ && (!paused_ || single_step_) && !latest()->converged;
+      if (queue_.empty() && !work) {
+        idle_ = true;
+        wake_.wait(lock, [this] { return quit_ || !queue_.empty(); });
+      }
+      if (quit_) return;
+      if (!queue_.empty()) {
+        next = std::move(queue_.front());
+        queue_.pop_front();
+      }
+    }
+    if (next) {
+      handle(*next);
+      publish();
+      continue;
+    }
+    // One shot, then publish: the view updates after every iteration.
+    exhausted_ = !step_radiosity(*state_);  // nothing left to shoot: done whatever the criterion
+    single_step_ = false;
+    history_.push_back({state_->stats.seconds, state_->stats.unshot_fraction});
+    publish();
+  }
+}
+
+}  // namespace bounce

@@ -1,0 +1,91 @@
+// The solver on its own thread. The UI sends commands (one queue, owned by
+// the worker) and takes the newest published view of the work; it never
+// touches solver internals, and no lock is held while shooting or drawing.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli.h"
+#include "patch_mesh.h"
+#include "radiosity.h"
+
+namespace bounce {
+
+struct convergence_point {
+  double seconds;  // solver time
+  double unshot_fraction;
+};
+
+// What the UI sees, immutable once published.
+struct worker_view {
+  std::uint64_t mesh_version = 0;  // changes when a new scene or mesh density is loaded
+  std::shared_ptr<const scene> source;
+  std::shared_ptr<const patch_mesh> mesh;
+  std::shared_ptr<const radiosity_snapshot> solution;
+  std::vector<convergence_point> history;  // unshot fraction against time since the (re)start
+  bool running = false;                    // shooting now
+  bool converged = false;                  // the stopping criterion holds (or nothing is left)
+  std::string error;                       // last failure (bad scene, mesh too large); the previous scene stays
+};
+
+class solver_worker {
+ public:
+  solver_worker();
+  ~solver_worker();  // stops and joins the thread
+  solver_worker(const solver_worker&) = delete;
+  solver_worker& operator=(const solver_worker&) = delete;
+
+  // Meshes the scene with these options and starts solving at once.
+  void load(scene s, const solver_options& options);
+  // Loads a scene file (path) on the worker; errors arrive in the view.
+  void load_file(const std::string& path, const solver_options& options);
+  void pause();
+  void resume();
+  void step();     // one shot, then paused
+  void restart();  // back to B = E, running
+  void set_criterion(const stop_criterion& criterion);
+
+  std::shared_ptr<const worker_view> latest() const { return std::atomic_load(&view_); }
+
+  // Blocks until the worker is idle (paused, converged or failed); for
+  // tests and the scripted window run.
+  void wait_idle() const;
+
+ private:
+  struct command;
+  void enqueue(std::unique_ptr<command> c);
+  void send(int what);  // a command without arguments
+  void run();
+  void publish();
+  void handle(command& c);
+
+  std::thread thread_;
+  mutable std::mutex mutex_;
+  mutable std::condition_variable wake_;
+  std::deque<std::unique_ptr<command>> queue_;
+  bool quit_ = false;
+
+  // Worker-thread state.
+  std::shared_ptr<const scene> scene_;
+  std::shared_ptr<const patch_mesh> mesh_;
+  std::unique_ptr<radiosity_state> state_;
+  stop_criterion criterion_;
+  bool paused_ = false;
+  bool single_step_ = false;
+  bool exhausted_ = false;
+  std::uint64_t mesh_version_ = 0;
+  std::vector<convergence_point> history_;
+  std::string error_;
+  std::atomic<bool> idle_{true};
+
+  std::shared_ptr<const worker_view> view_;
+};
+
+}  // namespace bounce

@@ -1,0 +1,271 @@
+#include "viewer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include <glad/gl.h>
+// glad first: GLFW must not pull in a GL header of its own.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "camera_math.h"
+#include "image.h"
+#include "mesh_renderer.h"
+#include "orbit.h"
+#include "panel.h"
+#include "scene_io.h"
+#include "solver_worker.h"
+
+namespace bounce {
+namespace {
+
+struct input_state {
+  double scroll = 0.0;  // wheel steps since the last frame
+};
+
+void on_scroll(GLFWwindow* window, double, double dy) {
+  static_cast<input_state*>(glfwGetWindowUserPointer(window))->scroll += dy;
+}
+
+void on_glfw_error(int code, const char* message) {
+  std::fprintf(stderr, "glfw error %d: %s\n", code, message);
+}
+
+// Reads the back buffer (width x height) as RGB, top row first, and writes a PNG.
+bool save_screenshot(const std::string& path, int width, int height, std::string& error) {
+  std::vector<unsigned char> rgb(std::size_t(width) * height * 3), flipped(rgb.size());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  const std::size_t row = std::size_t(width) * 3;
+  for (int y = 0; y < height; ++y)
+    std::copy_n(rgb.data() + std::size_t(height - 1 - y) * row, row, flipped.data() + std::size_t(y) * row);
+  return write_png(path, width, height, 3, flipped.data(), error);
+}
+
+}  // namespace
+
+int run_viewer(const scene& initial, const solver_options& solver, const viewer_options& options) {
+  glfwSetErrorCallback(on_glfw_error);
+  if (!glfwInit()) {
+    std::fprintf(stderr, "error: no display for a window (GLFW could not start); use `bounce render` instead\n");
+    return exit_input_error;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 4);  // antialiased edges in the window too
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+  // The scene camera's aspect, at least 900 pixels on the long side so the
+  // panel leaves room for the view.
+  const double grow = std::max(1.0, 900.0 / std::max(initial.view.width, initial.view.height));
+  GLFWwindow* window =
+      glfwCreateWindow(int(initial.view.width * grow), int(initial.view.height * grow), "Bounce", nullptr, nullptr);
+  if (!window) {
+    glfwTerminate();
+    std::fprintf(stderr, "error: cannot open a GL 3.3 core window\n");
+    return exit_input_error;
+  }
+  input_state input;
+  glfwSetWindowUserPointer(window, &input);
+  glfwSetScrollCallback(window, on_scroll);  // before ImGui, which chains to it
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(options.frames > 0 ? 0 : 1);  // vsync, except in scripted runs
+  if (!gladLoadGL(glfwGetProcAddress)) {
+    std::fprintf(stderr, "error: cannot load OpenGL\n");
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return exit_input_error;
+  }
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  int code = exit_ok;
+  {
+    gl::mesh_renderer renderer;
+    std::string error;
+    if (!renderer.init(error)) {
+      std::fprintf(stderr, "error: %s", error.c_str());
+      code = exit_input_error;
+    }
+    solver_worker worker;
+    worker.load(initial, solver);
+    panel_state panel;
+    panel.scene_path = initial.source;
+    panel.solver = solver;
+    panel.asset_scenes = find_scenes("assets");
+    camera scene_camera = initial.view;
+    orbit_state orbit = orbit_from_camera(scene_camera);
+    std::uint64_t uploaded_mesh = 0, uploaded_version = ~0ull;
+    double last_x = 0, last_y = 0;
+    glfwGetCursorPos(window, &last_x, &last_y);
+    auto last_frame = std::chrono::steady_clock::now();
+    double frame_ms = 0.0;
+    std::string shown_error;
+
+    for (int frame = 1; code == exit_ok && !glfwWindowShouldClose(window); ++frame) {
+      glfwPollEvents();
+      const auto now = std::chrono::steady_clock::now();
+      const double dt = std::chrono::duration<double>(now - last_frame).count();
+      frame_ms = 1000.0 * dt;
+      last_frame = now;
+
+      // Newest published work: a new mesh is uploaded once, then only the
+      // radiosity buffer changes.
+      const std::shared_ptr<const worker_view> view = worker.latest();
+      if (view->mesh && view->mesh_version != uploaded_mesh) {
+        renderer.upload(*view->mesh);
+        uploaded_mesh = view->mesh_version;
+        uploaded_version = ~0ull;
+        if (view->source && view->source.get() != nullptr && view->mesh_version > 1) {
+          scene_camera = view->source->view;
+          orbit = orbit_from_camera(scene_camera);
+        }
+      }
+      if (view->solution && view->solution->version != uploaded_version) {
+        renderer.update(*view->solution);
+        uploaded_version = view->solution->version;
+      }
+      if (view->error != shown_error) {
+        shown_error = view->error;
+        if (!shown_error.empty()) std::fprintf(stderr, "error: %s\n", shown_error.c_str());
+      }
+
+      // Input: ImGui first; the view gets what the panel does not want.
+      ImGuiIO& io = ImGui::GetIO();
+      double x = 0, y = 0;
+      glfwGetCursorPos(window, &x, &y);
+      const double dx = x - last_x, dy = y - last_y;
+      last_x = x;
+      last_y = y;
+      int window_width = 0, window_height = 0;
+      glfwGetWindowSize(window, &window_width, &window_height);
+      const bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+      if (!io.WantCaptureMouse) {
+        const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        const bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                           glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+        if (right || (left && shift))
+          orbit_pan(orbit, dx, dy, window_height, scene_camera.fov_y_degrees);
+        else if (left)
+          orbit_rotate(orbit, dx, dy);
+        if (input.scroll != 0.0) orbit_zoom(orbit, input.scroll);
+      }
+      input.scroll = 0.0;
+      panel_actions keys;
+      if (!io.WantCaptureKeyboard) {
+        auto down = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
+        const double speed = orbit.distance * 0.5 * dt;  // half the viewing distance per second
+        orbit_fly(orbit, (down(GLFW_KEY_W) - down(GLFW_KEY_S)) * speed, (down(GLFW_KEY_D) - down(GLFW_KEY_A)) * speed,
+                  (down(GLFW_KEY_E) - down(GLFW_KEY_Q)) * speed);
+        for (int k = 0; k < int(io.InputQueueCharacters.Size); ++k) {
+          switch (io.InputQueueCharacters[k]) {
+            case 'f':
+            case 'F':
+              keys.frame_scene = true;
+              break;
+            case 'c':
+            case 'C':
+              keys.reset_camera = true;
+              break;
+            case ' ':
+              (view->running ? keys.pause : keys.resume) = true;
+              break;
+            case 'n':
+            case 'N':
+              keys.step = true;
+              break;
+            case 'r':
+            case 'R':
+              keys.restart = true;
+              break;
+            case 'g':
+            case 'G':
+              panel.display.wireframe = !panel.display.wireframe;
+              break;
+            case 'p':
+            case 'P':
+              keys.screenshot = true;
+              break;
+            case 'h':
+            case 'H':
+              panel.show_help = !panel.show_help;
+              break;
+            default:
+              break;
+          }
+        }
+        if (down(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
+      }
+
+      // The 3-D view; a minimised window (size 0) draws nothing.
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window, &width, &height);
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      panel_actions act = draw_panel(panel, *view, frame_ms);
+      ImGui::Render();
+      if (width > 0 && height > 0) {
+        camera cam = camera_from_orbit(orbit, scene_camera);
+        cam.width = width;
+        cam.height = height;
+        const bounds3 bounds = view->source ? scene_bounds(*view->source) : scene_bounds(initial);
+        const glm::mat4 view_projection(projection_matrix(cam, bounds) * view_matrix(cam));
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, width, height);
+        glEnable(GL_MULTISAMPLE);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        if (view->mesh) renderer.draw(view_projection, glm::vec3(cam.eye), panel.display);
+        const bool scripted_end = options.frames > 0 && frame >= options.frames;
+        auto screenshot = [&](const std::string& path) {
+          std::string e;
+          if (save_screenshot(path, width, height, e))
+            panel.message = "screenshot: " + std::filesystem::absolute(path).string();
+          else
+            panel.message = e;
+          std::printf("%s\n", panel.message.c_str());
+        };
+        const bool panel_in_shot = scripted_end ? options.screenshot_panel : panel.screenshot_with_panel;
+        if ((act.screenshot || keys.screenshot || (scripted_end && !options.screenshot_path.empty())) && !panel_in_shot)
+          screenshot(scripted_end ? options.screenshot_path : panel.screenshot_path);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if ((act.screenshot || keys.screenshot || (scripted_end && !options.screenshot_path.empty())) && panel_in_shot)
+          screenshot(scripted_end ? options.screenshot_path : panel.screenshot_path);
+        if (scripted_end && options.exit_after) glfwSetWindowShouldClose(window, GLFW_TRUE);
+      }
+      glfwSwapBuffers(window);
+
+      // Carry out what the panel and the keys asked for.
+      if (act.open_scene) worker.load_file(panel.scene_path, panel.solver);
+      if (act.apply_mesh && view->source) worker.load(*view->source, panel.solver);
+      if (act.pause || keys.pause) worker.pause();
+      if (act.resume || keys.resume) worker.resume();
+      if (act.step || keys.step) worker.step();
+      if (act.restart || keys.restart) worker.restart();
+      if (act.frame_scene || keys.frame_scene)
+        orbit_frame(orbit, view->source ? scene_bounds(*view->source) : scene_bounds(initial),
+                    scene_camera.fov_y_degrees);
+      if (act.reset_camera || keys.reset_camera) orbit = orbit_from_camera(scene_camera);
+      if ((act.open_scene || act.apply_mesh)) panel.message.clear();
+    }
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace bounce

@@ -1,0 +1,21 @@
+// `bounce view`: the GLFW window with the Gouraud view, the ImGui panel
+// and the solver running on its own thread.
+#pragma once
+
+#include <string>
+
+#include "cli.h"
+
+namespace bounce {
+
+struct viewer_options {
+  int frames = 0;               // > 0: a scripted run of this many frames (tests)
+  std::string screenshot_path;  // written after the last scripted frame
+  bool screenshot_panel = true;
+  bool exit_after = false;  // leave after the scripted frames
+};
+
+// Returns an exit code; without a display it says so and returns 1.
+int run_viewer(const scene& s, const solver_options& solver, const viewer_options& options);
+
+}  // namespace bounce

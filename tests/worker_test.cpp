@@ -1,0 +1,83 @@
+// The solver thread: commands through one queue, an immutable view
+// published after every step, errors that keep the previous scene.
+#include <gtest/gtest.h>
+
+#include "scene_io.h"
+#include "solver_worker.h"
+#include "test_files.h"
+
+namespace bounce {
+namespace {
+
+scene cornell() {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
+  return s;
+}
+
+solver_options coarse(double until) {
+  solver_options o;
+  o.max_edge = 120;
+  o.until = until;
+  return o;
+}
+
+TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
+  solver_worker worker;
+  worker.load(cornell(), coarse(0.01));
+  worker.wait_idle();
+  auto view = worker.latest();
+  ASSERT_TRUE(view->mesh);
+  ASSERT_TRUE(view->solution);
+  EXPECT_TRUE(view->converged);
+  EXPECT_FALSE(view->running);
+  EXPECT_LE(view->solution->stats.unshot_fraction, 0.01);
+  // One history point per shot, unshot falling.
+  EXPECT_EQ(view->history.size(), view->solution->stats.shots);
+  for (std::size_t i = 1; i < view->history.size(); ++i)
+    EXPECT_LE(view->history[i].unshot_fraction, view->history[i - 1].unshot_fraction + 1e-12);
+  EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
+}
+
+TEST(SolverWorker, PauseStepAndRestart) {
+  solver_worker worker;
+  worker.load(cornell(), coarse(1e-9));
+  worker.pause();
+  worker.wait_idle();
+  const std::uint64_t paused_at = worker.latest()->solution->stats.shots;
+  EXPECT_FALSE(worker.latest()->running);
+  worker.step();
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 1);
+  worker.step();
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 2);
+  worker.restart();
+  worker.pause();
+  worker.wait_idle();
+  EXPECT_LT(worker.latest()->solution->stats.shots, paused_at + 2 + 1000);
+  EXPECT_EQ(worker.latest()->mesh_version, 1u);
+}
+
+TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
+  testing::scratch_dir dir;
+  solver_worker worker;
+  worker.load(cornell(), coarse(0.05));
+  worker.wait_idle();
+  const auto before = worker.latest();
+  worker.load_file(dir.write("bad.json", "{ not json"), coarse(0.05));
+  worker.wait_idle();
+  const auto after = worker.latest();
+  EXPECT_NE(after->error.find("bad.json:1:"), std::string::npos) << after->error;
+  EXPECT_EQ(after->mesh, before->mesh);
+  EXPECT_EQ(after->mesh_version, before->mesh_version);
+  // A good scene file replaces it and clears the error.
+  worker.load_file(testing::source_path("assets/furnace/furnace.json"), coarse(0.05));
+  worker.wait_idle();
+  EXPECT_TRUE(worker.latest()->error.empty());
+  EXPECT_EQ(worker.latest()->mesh_version, before->mesh_version + 1);
+}
+
+}  // namespace
+}  // namespace bounce
