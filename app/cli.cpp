@@ -286,11 +286,17 @@ int run_cli(int argc, char** argv) {
   render->add_flag("--wireframe", render_extra.wireframe, "draw element edges");
   render->add_flag("--ambient", render_extra.ambient, "add the ambient term of the unshot power (display only)");
   render->add_flag("--panel", render_extra.panel, "draw the ImGui panel over the view, as in the window");
+  render->add_option("--colours", render_extra.colours, "radiance, or false colour of unshot power or element size")
+      ->check(CLI::IsMember({"radiance", "unshot", "size"}))
+      ->capture_default_str();
   viewer_options view_extra;
   CLI::App* view = commands[0].app;
   view->add_option("--frames", view_extra.frames, "scripted run: draw this many frames")->check(CLI::PositiveNumber);
   view->add_option("--screenshot", view_extra.screenshot_path, "after the scripted frames, save the window as PNG");
   view->add_flag("--exit", view_extra.exit_after, "quit after the scripted frames");
+  view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");
+  view->add_option("--msaa", view_extra.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")
+      ->check(CLI::Range(0, 16));
   solve_options solve_extra;
   commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
   commands[3].app->add_flag("--reference", solve_extra.reference,

@@ -47,6 +47,9 @@ int run_render(const scene& s, const solver_options& solver, const render_option
   settings.curve = options.curve == "filmic" ? gl::tone_curve::filmic : gl::tone_curve::srgb;
   settings.wireframe = options.wireframe;
   settings.ambient = options.ambient;
+  settings.colours = options.colours == "unshot" ? gl::false_colour::unshot
+                     : options.colours == "size" ? gl::false_colour::element_size
+                                                 : gl::false_colour::none;
 
   // The panel, headless: ImGui needs no platform backend, only a display
   // size and a few frames to lay its windows out.

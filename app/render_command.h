@@ -17,7 +17,8 @@ struct render_options {
   std::string curve = "srgb";  // srgb | filmic
   bool wireframe = false;
   bool ambient = false;
-  bool panel = false;  // draw the ImGui panel over the view, as the window shows it
+  bool panel = false;                // draw the ImGui panel over the view, as the window shows it
+  std::string colours = "radiance";  // radiance | unshot | size (false colour)
 };
 
 int run_render(const scene& s, const solver_options& solver, const render_options& options);

@@ -3,10 +3,12 @@ in vec3 vertex_radiance;
 in vec3 vertex_unshot;
 in vec3 world_normal;
 in vec3 world_position;
+in float vertex_element_size;
 
 uniform float exposure;
 uniform int tone_curve;        // 0: clamp + sRGB, 1: filmic (ACES fit) + sRGB, 2: linear radiance (PFM)
-uniform int false_colour;      // 0: radiance, 1: unshot power (log scale heat map)
+uniform int false_colour;      // 0: radiance, 1: unshot power (log scale), 2: element size (linear)
+uniform float largest_element;  // element size that maps to the top of the scale
 uniform int highlight_back_faces;
 uniform vec3 eye;
 
@@ -22,9 +24,9 @@ vec3 filmic(vec3 x) {
   return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
 }
 
-// Blue (low) to red (high) over eight decades, for false colour.
-vec3 heat(float value) {
-  float t = clamp((log(max(value, 1e-30)) / log(10.0) + 6.0) / 8.0, 0.0, 1.0);
+// Blue (0) to red (1).
+vec3 heat(float t) {
+  t = clamp(t, 0.0, 1.0);
   return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
 }
 
@@ -33,8 +35,13 @@ void main() {
     fragment = vec4(1.0, 0.0, 1.0, 1.0);  // magenta: a flipped normal faces the camera
     return;
   }
-  if (false_colour == 1) {
-    fragment = vec4(srgb(heat(dot(vertex_unshot, vec3(1.0)))), 1.0);
+  if (false_colour == 1) {  // unshot radiance over eight decades, 1e-6 to 1e2
+    float value = max(dot(vertex_unshot, vec3(1.0)), 1e-30);
+    fragment = vec4(srgb(heat((log(value) / log(10.0) + 6.0) / 8.0)), 1.0);
+    return;
+  }
+  if (false_colour == 2) {
+    fragment = vec4(srgb(heat(vertex_element_size / largest_element)), 1.0);
     return;
   }
   vec3 value = vertex_radiance * exposure;

@@ -40,7 +40,9 @@ run_result run_env(const std::string& prefix, const std::string& args) {
   return r;
 }
 
-run_result run(const std::string& args) { return run_env("", args); }
+run_result run(const std::string& args) {
+  return run_env("", args);
+}
 
 TEST(Cli, HelpListsEveryCommand) {
   run_result r = run("--help");

@@ -1,5 +1,7 @@
 #include "mesh_renderer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <glad/gl.h>
@@ -35,13 +37,25 @@ bool mesh_renderer::init(std::string& error) {
 
 void mesh_renderer::upload(const patch_mesh& mesh) {
   vertex_count_ = mesh.vertex_count();
-  // Static: position, normal, reflectance, interleaved.
+  // Element size seen from a vertex: the square root of its elements' mean area.
+  std::vector<double> area_sum(vertex_count_, 0.0);
+  std::vector<int> count(vertex_count_, 0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      area_sum[mesh.elements[e][k]] += mesh.element_areas[e];
+      ++count[mesh.elements[e][k]];
+    }
+  largest_element_ = 0.0f;
+  // Static: position, normal, reflectance, element size, interleaved.
   std::vector<float> data;
-  data.reserve(vertex_count_ * 9);
+  data.reserve(vertex_count_ * 10);
   for (std::size_t v = 0; v < vertex_count_; ++v) {
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.positions[v][k]));
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.normals[v][k]));
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.vertex_rho[v][k]));
+    const float size = count[v] ? float(std::sqrt(area_sum[v] / count[v])) : 0.0f;
+    data.push_back(size);
+    largest_element_ = std::max(largest_element_, size);
   }
   std::vector<unsigned int> indices;
   indices.reserve(mesh.element_count() * 3);
@@ -52,12 +66,15 @@ void mesh_renderer::upload(const patch_mesh& mesh) {
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, static_buffer_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
-  const GLsizei stride = 9 * sizeof(float);
+  const GLsizei stride = 10 * sizeof(float);
   for (GLuint attribute = 0; attribute < 3; ++attribute) {
     glEnableVertexAttribArray(attribute);
     glVertexAttribPointer(attribute, 3, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(std::uintptr_t(attribute * 3 * sizeof(float))));
   }
+  glEnableVertexAttribArray(5);
+  glVertexAttribPointer(5, 1, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(std::uintptr_t(9 * sizeof(float))));
   // Dynamic: radiosity then unshot, two blocks, rewritten every step.
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertex_count_ * 6 * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
@@ -94,6 +111,7 @@ void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,
   glUniform1f(glGetUniformLocation(program_, "exposure"), float(settings.exposure));
   glUniform1i(glGetUniformLocation(program_, "tone_curve"), int(settings.curve));
   glUniform1i(glGetUniformLocation(program_, "false_colour"), int(settings.colours));
+  glUniform1f(glGetUniformLocation(program_, "largest_element"), std::max(largest_element_, 1e-30f));
   glUniform1i(glGetUniformLocation(program_, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
   if (settings.wireframe) {

@@ -13,7 +13,7 @@
 namespace bounce::gl {
 
 enum class tone_curve : int { srgb = 0, filmic = 1, linear = 2 };
-enum class false_colour : int { none = 0, unshot = 1 };
+enum class false_colour : int { none = 0, unshot = 1, element_size = 2 };
 
 struct display_settings {
   double exposure = 1.0;  // displayed value = radiance x exposure
@@ -50,6 +50,7 @@ class mesh_renderer {
   unsigned int static_buffer_ = 0, dynamic_buffer_ = 0, index_buffer_ = 0;
   int index_count_ = 0;
   std::size_t vertex_count_ = 0;
+  float largest_element_ = 1.0f;
   glm::vec3 ambient_{0.0f};
 };
 

@@ -135,9 +135,9 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::Checkbox("wireframe", &state.display.wireframe);
     ImGui::SameLine();
     ImGui::Checkbox("ambient term", &state.display.ambient);
-    bool unshot = state.display.colours == gl::false_colour::unshot;
-    ImGui::Checkbox("false colour: unshot", &unshot);
-    state.display.colours = unshot ? gl::false_colour::unshot : gl::false_colour::none;
+    int colours = int(state.display.colours);
+    ImGui::Combo("colours", &colours, "radiance\0false colour: unshot power\0false colour: element size\0");
+    state.display.colours = static_cast<gl::false_colour>(colours);
     ImGui::Checkbox("highlight back faces", &state.display.highlight_back_faces);
     if (ImGui::Button("Frame scene")) act.frame_scene = true;
     ImGui::SameLine();

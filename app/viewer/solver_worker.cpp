@@ -182,8 +182,10 @@ void solver_worker::run() {
       publish();
       continue;
     }
-    // One shot, then publish: the view updates after every iteration.
-    exhausted_ = !step_radiosity(*state_);  // nothing left to shoot: done whatever the criterion
+    // One shot, then publish: the view updates after every iteration. The
+    // shot runs on all cores but one, which stays free for drawing (Mesa's
+    // llvmpipe renders on the CPU): the UI must not stall.
+    arena_.execute([&] { exhausted_ = !step_radiosity(*state_); });  // nothing left: done
     single_step_ = false;
     history_.push_back({state_->stats.seconds, state_->stats.unshot_fraction});
     publish();

@@ -3,6 +3,7 @@
 // touches solver internals, and no lock is held while shooting or drawing.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -11,6 +12,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "cli.h"
 #include "patch_mesh.h"
@@ -86,6 +89,7 @@ class solver_worker {
   std::atomic<bool> idle_{true};
 
   std::shared_ptr<const worker_view> view_;
+  tbb::task_arena arena_{int(std::max(1u, std::thread::hardware_concurrency() - 1))};
 };
 
 }  // namespace bounce

@@ -12,7 +12,9 @@ struct viewer_options {
   int frames = 0;               // > 0: a scripted run of this many frames (tests)
   std::string screenshot_path;  // written after the last scripted frame
   bool screenshot_panel = true;
-  bool exit_after = false;  // leave after the scripted frames
+  bool exit_after = false;    // leave after the scripted frames
+  bool start_paused = false;  // mesh and show the scene, shoot nothing until Start
+  int msaa = -1;              // window samples; -1: 4 on GPUs, 0 on software GL (llvmpipe)
 };
 
 // Returns an exit code; without a display it says so and returns 1.
