@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include <embree3/rtcore.h>
+#include "embree_device.h"
 
 namespace bounce {
 namespace {
@@ -14,8 +14,9 @@ void report_embree_error(void*, RTCError code, const char* message) {
   std::fprintf(stderr, "embree error %d: %s\n", static_cast<int>(code), message ? message : "");
 }
 
-// One Embree device per process: creating one starts its thread pool.
-RTCDevice shared_device() {
+}  // namespace
+
+RTCDevice embree_device() {
   static RTCDevice device = [] {
     RTCDevice d = rtcNewDevice(nullptr);
     if (!d) throw std::runtime_error("embree: cannot create a device");
@@ -25,8 +26,6 @@ RTCDevice shared_device() {
   return device;
 }
 
-}  // namespace
-
 struct occlusion_scene::embree_state {
   RTCScene scene = nullptr;
   std::vector<segment> recorded;               // sized once by record_segments
@@ -35,7 +34,7 @@ struct occlusion_scene::embree_state {
 
 occlusion_scene::occlusion_scene(std::span<const vec3> positions, std::span<const glm::ivec3> triangles)
     : state_(std::make_unique<embree_state>()) {
-  RTCDevice device = shared_device();
+  RTCDevice device = embree_device();
   state_->scene = rtcNewScene(device);
   rtcSetSceneFlags(state_->scene, RTC_SCENE_FLAG_ROBUST);  // no cracks between shared edges
   if (!triangles.empty()) {
