@@ -5,9 +5,8 @@
 #include <atomic>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
-
 #include "occlusion.h"
+#include "parallel.h"
 
 namespace bounce {
 namespace {
@@ -158,11 +157,7 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, const sho
     }
     total_rays += rays;
   };
-  if (context.params.parallel)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertex_count(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& r) { receive(r.begin(), r.end()); });
-  else
-    receive(0, mesh.vertex_count());
+  for_each_block(context.params.parallel, mesh.vertex_count(), 64, receive);
   return total_rays;
 }
 

@@ -2,7 +2,7 @@
 
 #include <atomic>
 
-#include <tbb/parallel_for.h>
+#include "parallel.h"
 
 namespace bounce {
 
@@ -27,11 +27,7 @@ std::vector<rgb> point_light_radiosity(const scene& s, const patch_mesh& mesh, c
     }
     cast += local;
   };
-  if (context.params.parallel)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertex_count(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& r) { light_vertices(r.begin(), r.end()); });
-  else
-    light_vertices(0, mesh.vertex_count());
+  for_each_block(context.params.parallel, mesh.vertex_count(), 256, light_vertices);
   rays += cast;
   return out;
 }

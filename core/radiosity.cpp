@@ -59,7 +59,7 @@ void shoot_patch(radiosity_state& state, std::size_t patch) {
   state.balance.shot += power;
   const rgb shot = power / mesh.patch_areas[patch];
   const rgb shot_emission = emission_power / mesh.patch_areas[patch];
-  std::vector<rgb> delta(mesh.vertex_count());
+  std::vector<rgb>& delta = state.received;  // reused from shot to shot: no allocation on the hot path
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const double f = state.scratch[v];
     delta[v] = mesh.vertex_rho[v] * (f * shot);
@@ -79,6 +79,7 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   state->params = params;
   state->form_factors = make_form_factor_context(mesh, params.form_factors);
   state->scratch.assign(mesh.vertex_count(), 0.0);
+  state->received.assign(mesh.vertex_count(), rgb(0.0));
   state->patch_power.assign(mesh.patch_count(), 0.0);
   state->patch_elements.assign(mesh.patch_count(), {});
   for (std::size_t e = 0; e < mesh.element_count(); ++e)

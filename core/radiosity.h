@@ -60,6 +60,7 @@ struct radiosity_state {
   radiosity_stats stats;
   bool lights_shot = false;
   std::vector<double> scratch;      // form factors of the current shot
+  std::vector<rgb> received;        // what each vertex received in the current shot
   std::vector<double> patch_power;  // unshot power per patch, for choosing the shooter
   std::vector<std::vector<int>> patch_elements;
 };
