@@ -69,24 +69,23 @@ void expect_matches_golden(const std::string& rendered, const std::string& golde
 // Tolerances: llvmpipe is deterministic on one machine; the margins allow
 // other CPUs' float rounding and a few flipped shadow rays.
 constexpr double max_mean = 1.0, max_p999 = 24.0;
-const std::string common = "render --size 128x128 --max-edge 60 ";
+
+// Renders the Cornell box as tests/update_goldens.sh does, with the given
+// stopping point, and compares it with the named golden.
+void expect_cornell_matches(const std::string& stop, const std::string& golden) {
+  scratch_dir dir;
+  ASSERT_EQ(run("render --size 128x128 --max-edge 60 " + stop + " --out " + dir.path("a.png")), 0);
+  expect_matches_golden(dir.path("a.png"), golden, max_mean, max_p999);
+}
 
 TEST(HeadlessImages, CornellBoxAfterOneShot) {
-  scratch_dir dir;
-  ASSERT_EQ(run(common + "--max-shots 1 --out " + dir.path("a.png")), 0);
-  expect_matches_golden(dir.path("a.png"), "cornell_1_shot.png", max_mean, max_p999);
+  expect_cornell_matches("--max-shots 1", "cornell_1_shot.png");
 }
-
 TEST(HeadlessImages, CornellBoxAfterTenShots) {
-  scratch_dir dir;
-  ASSERT_EQ(run(common + "--max-shots 10 --out " + dir.path("a.png")), 0);
-  expect_matches_golden(dir.path("a.png"), "cornell_10_shots.png", max_mean, max_p999);
+  expect_cornell_matches("--max-shots 10", "cornell_10_shots.png");
 }
-
 TEST(HeadlessImages, CornellBoxConverged) {
-  scratch_dir dir;
-  ASSERT_EQ(run(common + "--until 0.001 --out " + dir.path("a.png")), 0);
-  expect_matches_golden(dir.path("a.png"), "cornell_converged.png", max_mean, max_p999);
+  expect_cornell_matches("--until 0.001", "cornell_converged.png");
 }
 
 TEST(HeadlessImages, EmitterPixelsShowTheirRadiance) {

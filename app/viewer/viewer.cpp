@@ -152,7 +152,7 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         renderer.upload(*view->mesh);
         uploaded_mesh = view->mesh_version;
         uploaded_version = ~0ull;
-        if (view->source && view->source.get() != nullptr && view->mesh_version > 1) {
+        if (view->source && view->mesh_version > 1) {  // a newly opened scene brings its camera
           scene_camera = view->source->view;
           orbit = orbit_from_camera(scene_camera);
         }
