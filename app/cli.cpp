@@ -10,10 +10,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "image_metrics.h"
 #include "render_command.h"
 #include "scene_info.h"
 #include "scene_io.h"
 #include "solve_command.h"
+#include "trace_command.h"
 #include "viewer.h"
 
 namespace bounce {
@@ -112,6 +114,33 @@ int run_info(const std::string& path, bool as_json, double max_edge) {
             << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
             << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
             << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";
+  return exit_ok;
+}
+
+int run_compare(const std::string& test_path, const std::string& reference_path, int factor, double bright) {
+  image test, reference;
+  std::string error;
+  if (!read_pfm(test_path, test, error) || !read_pfm(reference_path, reference, error)) {
+    std::cerr << "error: " << error << "\n";
+    return exit_input_error;
+  }
+  if (test.width != reference.width || test.height != reference.height) {
+    std::cerr << "error: " << test_path << " is " << test.width << "x" << test.height << " but " << reference_path
+              << " is " << reference.width << "x" << reference.height << "\n";
+    return exit_input_error;
+  }
+  if (bright > 0.0) {
+    const std::vector<bool> emitters = bright_pixels(reference, bright);
+    exclude_pixels(test, emitters, 1);
+    exclude_pixels(reference, emitters, 1);
+  }
+  test = downsample(test, factor);
+  reference = downsample(reference, factor);
+  std::printf("mean radiance: test %.6g, reference %.6g (ratio %.5f)\n", mean_radiance(test), mean_radiance(reference),
+              mean_radiance(test) / mean_radiance(reference));
+  std::printf("relative RMSE %.5f, mean relative error %.5f, max relative error %.4f (%dx%d after %dx downsampling)\n",
+              relative_rmse(test, reference), mean_relative_error(test, reference), max_relative_error(test, reference),
+              test.width, test.height, factor);
   return exit_ok;
 }
 
@@ -237,18 +266,16 @@ int run_cli(int argc, char** argv) {
   struct solving_command {
     const char* name;
     const char* help;
-    const char* issue;
     CLI::App* app = nullptr;
     std::string scene;
     solver_options solver;
     camera_options camera;
   };
-  // `issue` names where a capability not built yet arrives; empty when built.
   solving_command commands[] = {
-      {"view", "open the interactive window", "", nullptr, {}, {}, {}},
-      {"render", "solve and render the Gouraud view headlessly to PNG/PFM", "", nullptr, {}, {}, {}},
-      {"trace", "solve, then ray trace a still", "the ray tracer arrives with issue #5", nullptr, {}, {}, {}},
-      {"solve", "run the radiosity solver and report statistics", "", nullptr, {}, {}, {}},
+      {"view", "open the interactive window", nullptr, {}, {}, {}},
+      {"render", "solve and render the Gouraud view headlessly to PNG/PFM", nullptr, {}, {}, {}},
+      {"trace", "solve, then ray trace a still (two-pass), or path trace a reference", nullptr, {}, {}, {}},
+      {"solve", "run the radiosity solver and report statistics", nullptr, {}, {}, {}},
   };
   for (solving_command& c : commands) {
     c.app = app.add_subcommand(c.name, c.help);
@@ -284,6 +311,8 @@ int run_cli(int argc, char** argv) {
   view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");
   view->add_option("--msaa", view_extra.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")
       ->check(CLI::Range(0, 16));
+  trace_options trace_extra;
+  add_trace_options(*commands[2].app, trace_extra);
   solve_options solve_extra;
   commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
   commands[3].app->add_flag("--reference", solve_extra.reference,
@@ -291,6 +320,19 @@ int run_cli(int argc, char** argv) {
   commands[3].app->add_flag("--ray-baseline", solve_extra.ray_baseline,
                             "replay 2M of the solver's shadow rays through Embree's rtcOccluded1 and compare rates");
   CLI::App* bench = app.add_subcommand("bench", "measure speed against error");
+  CLI::App* compare = app.add_subcommand("compare", "error of one PFM picture against a reference PFM");
+  std::string compare_test, compare_reference;
+  int compare_downsample = 1;
+  compare->add_option("TEST", compare_test, "picture to measure (PFM)")->required();
+  compare->add_option("REFERENCE", compare_reference, "reference picture (PFM), the same size")->required();
+  double compare_bright = 0.0;
+  compare
+      ->add_option("--exclude-above", compare_bright,
+                   "leave out pixels (and their neighbours) where the reference exceeds this radiance: emitters")
+      ->check(CLI::PositiveNumber);
+  compare->add_option("--downsample", compare_downsample, "box-filter N x N blocks of both first")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -300,6 +342,7 @@ int run_cli(int argc, char** argv) {
   }
 
   if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
+  if (compare->parsed()) return run_compare(compare_test, compare_reference, compare_downsample, compare_bright);
   if (view->parsed()) {
     scene s;
     if (!load_for_command(commands[0].scene, &commands[0].camera, s)) return exit_input_error;
@@ -310,13 +353,16 @@ int run_cli(int argc, char** argv) {
     if (!load_for_command(commands[1].scene, &commands[1].camera, s)) return exit_input_error;
     return run_render(s, commands[1].solver, render_extra);
   }
+  if (commands[2].app->parsed()) {
+    scene s;
+    if (!load_for_command(commands[2].scene, &commands[2].camera, s)) return exit_input_error;
+    return run_trace(s, commands[2].solver, trace_extra);
+  }
   if (commands[3].app->parsed()) {
     scene s;
     if (!load_for_command(commands[3].scene, &commands[3].camera, s)) return exit_input_error;
     return run_solve(s, commands[3].solver, solve_extra);
   }
-  for (solving_command& c : commands)
-    if (c.app->parsed()) return run_not_built(c.name, c.issue, c.scene, &c.camera);
   if (bench->parsed()) return run_not_built("bench", "benchmarks arrive with issue #6", "", nullptr);
 
   // No subcommand: the main job on the embedded Cornell box: the window

@@ -9,6 +9,8 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
+#include "tonemap.h"
+
 namespace bounce {
 
 bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,
@@ -18,6 +20,19 @@ bool write_png(const std::string& path, int width, int height, int channels, con
     return false;
   }
   return true;
+}
+
+std::vector<unsigned char> to_srgb_rows(const image& img, double exposure) {
+  std::vector<unsigned char> rows(std::size_t(img.width) * img.height * 3);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const glm::u8vec3 c = to_srgb8(img.at(x, y), exposure);
+      const std::size_t i = (std::size_t(y) * img.width + x) * 3;
+      rows[i] = c.r;
+      rows[i + 1] = c.g;
+      rows[i + 2] = c.b;
+    }
+  return rows;
 }
 
 bool write_pfm(const std::string& path, const image& img, std::string& error) {

@@ -25,6 +25,9 @@ struct image {
 bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,
                std::string& error);
 
+// Linear radiance x exposure as 8-bit sRGB rows (no alpha), for write_png.
+std::vector<unsigned char> to_srgb_rows(const image& img, double exposure);
+
 // Portable float map (little-endian "PF"), linear radiance, rows stored
 // bottom-up as the format says.
 bool write_pfm(const std::string& path, const image& img, std::string& error);

@@ -13,6 +13,7 @@
 #include "patch_mesh.h"
 #include "scene_info.h"
 #include "tessellate.h"
+#include "texture.h"
 
 namespace bounce {
 namespace {
@@ -191,14 +192,6 @@ vec3 receive_point(const om_mesh& m, om_mesh::VertexHandle v) {
   return p + best * (1e-3 * edge_sum / edges);
 }
 }  // namespace
-
-rgb texture_mean(const texture& t) {
-  if (t.kind == texture_kind::checker) return 0.5 * (t.color0 + t.color1);
-  rgb sum(0.0);
-  for (std::size_t i = 0; i + 2 < t.texels.size(); i += 3) sum += rgb(t.texels[i], t.texels[i + 1], t.texels[i + 2]);
-  std::size_t n = t.texels.size() / 3;
-  return n ? sum / double(n) : rgb(1.0);
-}
 
 bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error) {
   const double max_edge = params.max_edge > 0.0 ? params.max_edge : default_max_edge(s);

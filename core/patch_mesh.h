@@ -78,10 +78,6 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
 // Barycentric coordinates of `point` (projected onto the element's plane).
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point);
 
-// Mean value of a texture over its whole domain (how a texture scales rho
-// in the radiosity pass; the ray tracer puts the detail back per pixel).
-rgb texture_mean(const texture& t);
-
 // Total area of the mesh, and per surface.
 double total_area(const patch_mesh& mesh);
 

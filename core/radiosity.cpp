@@ -144,6 +144,24 @@ rgb ambient_radiosity(const radiosity_state& state) {
   return unshot / area / (rgb(1.0) - mean_rho);
 }
 
+rgb mean_indirect_irradiance(const radiosity_state& state) {
+  const patch_mesh& mesh = *state.mesh;
+  rgb sum(0.0);
+  double area = 0.0;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    rgb irradiance(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.elements[e][k];
+      const rgb indirect = state.radiosity[v] - mesh.vertex_emission[v] - state.direct[v];
+      for (int c = 0; c < 3; ++c)
+        if (mesh.vertex_rho[v][c] > 0.0) irradiance[c] += indirect[c] / mesh.vertex_rho[v][c] / 3.0;
+    }
+    sum += irradiance * mesh.element_areas[e];
+    area += mesh.element_areas[e];
+  }
+  return area > 0.0 ? sum / area : rgb(0.0);
+}
+
 std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state) {
   const patch_mesh& mesh = *state.mesh;
   auto snap = std::make_shared<radiosity_snapshot>();
@@ -151,7 +169,11 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& s
   snap->stats = state.stats;
   snap->ambient = ambient_radiosity(state);
   snap->radiosity.resize(mesh.vertex_count());
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) snap->radiosity[v] = glm::vec3(state.radiosity[v]);
+  snap->direct.resize(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    snap->radiosity[v] = glm::vec3(state.radiosity[v]);
+    snap->direct[v] = glm::vec3(state.direct[v]);
+  }
   std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
   std::vector<int> count(mesh.vertex_count(), 0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e)

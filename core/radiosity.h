@@ -91,10 +91,16 @@ void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&
 // evenly, reflected with the mean reflectance. Never stored in B.
 rgb ambient_radiosity(const radiosity_state& state);
 
+// Area-weighted mean irradiance that did not come straight from an emitter
+// (what arrives after one or more reflections): the constant ambient term
+// of a one-pass Whitted still, taken from a (coarse) solution.
+rgb mean_indirect_irradiance(const radiosity_state& state);
+
 // An immutable copy for the viewer, published after every step.
 struct radiosity_snapshot {
   std::uint64_t version = 0;             // shots so far; increases with every step
   std::vector<glm::vec3> radiosity;      // per vertex, float for GL
+  std::vector<glm::vec3> direct;         // per vertex: the part of radiosity straight from the lights
   std::vector<glm::vec3> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
   rgb ambient{0.0};
   radiosity_stats stats;

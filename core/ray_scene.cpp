@@ -7,6 +7,7 @@
 
 #include "embree_device.h"
 
+#include "scene_info.h"
 #include "scene_io.h"
 #include "tessellate.h"
 
@@ -136,6 +137,19 @@ struct ray_scene::embree_state {
     std::unique_ptr<analytic_shape> shape;  // stable address: Embree keeps a pointer
   };
   std::vector<geometry> geometries;  // indexed by Embree geomID
+
+  struct emitter {
+    bool is_sphere = false;
+    vec3 p0{0.0}, p1{0.0}, p2{0.0};  // triangle corners, or the sphere's centre in p0
+    double radius = 0.0;
+    rgb radiance{0.0};
+    int surface = -1;
+  };
+  std::vector<emitter> emitters;
+  std::vector<double> emitter_cdf;  // running sum of the emitters' areas
+  std::vector<bool> sampled_surfaces;
+
+  void add_emitters(const bounce::scene& s, const geometry& g);
 };
 
 ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_unique<embree_state>()) {
@@ -162,7 +176,7 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
       rtcSetGeometryIntersectFunction(geometry, analytic_intersect);
       rtcSetGeometryOccludedFunction(geometry, analytic_occluded);
     } else {
-      g.triangles = tessellate(surf, patch_edge);
+      g.triangles = tessellate(surf, patch_edge > 0.0 ? patch_edge : 0.25 * default_max_edge(s));
       if (g.triangles.triangles.empty()) continue;
       geometry = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -174,6 +188,7 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
       for (std::size_t k = 0; k < g.triangles.triangles.size(); ++k)
         for (int c = 0; c < 3; ++c) idx[3 * k + c] = unsigned(g.triangles.triangles[k][c]);
     }
+    state_->add_emitters(s, g);
     rtcCommitGeometry(geometry);
     const unsigned id = rtcAttachGeometry(state_->scene, geometry);
     rtcReleaseGeometry(geometry);
@@ -181,6 +196,79 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
     state_->geometries[id] = std::move(g);
   }
   rtcCommitScene(state_->scene);
+  double area = 0.0;
+  for (const embree_state::emitter& e : state_->emitters) {
+    area += e.is_sphere ? 4.0 * std::numbers::pi * e.radius * e.radius
+                        : 0.5 * glm::length(glm::cross(e.p1 - e.p0, e.p2 - e.p0));
+    state_->emitter_cdf.push_back(area);
+  }
+}
+
+void ray_scene::embree_state::add_emitters(const bounce::scene& s, const geometry& g) {
+  auto emitting = [&](int material) { return glm::any(glm::greaterThan(s.materials[material].ke, rgb(0.0))); };
+  if (g.shape) {
+    if (!g.shape->is_sphere || !emitting(g.shape->ball.material)) return;
+    emitter e;
+    e.is_sphere = true;
+    e.p0 = g.shape->ball.center;
+    e.radius = g.shape->ball.radius;
+    e.radiance = s.materials[g.shape->ball.material].ke;
+    e.surface = g.surface;
+    emitters.push_back(e);
+  } else {
+    const triangle_mesh& m = g.triangles;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      if (!emitting(m.materials[t])) continue;
+      emitter e;
+      e.p0 = m.positions[m.triangles[t][0]];
+      e.p1 = m.positions[m.triangles[t][1]];
+      e.p2 = m.positions[m.triangles[t][2]];
+      e.radiance = s.materials[m.materials[t]].ke;
+      e.surface = g.surface;
+      emitters.push_back(e);
+    }
+  }
+  if (!emitters.empty() && emitters.back().surface == g.surface) {
+    if (sampled_surfaces.size() <= std::size_t(g.surface)) sampled_surfaces.resize(g.surface + 1, false);
+    sampled_surfaces[g.surface] = true;
+  }
+}
+
+double ray_scene::emitter_area() const {
+  return state_->emitter_cdf.empty() ? 0.0 : state_->emitter_cdf.back();
+}
+
+bool ray_scene::is_sampled_emitter(int surface) const {
+  const std::vector<bool>& sampled = state_->sampled_surfaces;
+  return surface >= 0 && std::size_t(surface) < sampled.size() && sampled[surface];
+}
+
+emitter_sample ray_scene::sample_emitter(double u1, double u2) const {
+  emitter_sample out;
+  const auto& emitters = state_->emitters;
+  const auto& cdf = state_->emitter_cdf;
+  if (emitters.empty()) return out;
+  // Pick the emitter by area with u1, then reuse u1's position inside its
+  // slice of the CDF, so stratification in u1 carries over.
+  const double total = cdf.back();
+  const double target = u1 * total;
+  const std::size_t i =
+      std::min<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin(), emitters.size() - 1);
+  const double lo = i ? cdf[i - 1] : 0.0;
+  const double u = std::clamp((target - lo) / std::max(cdf[i] - lo, 1e-300), 0.0, 1.0 - 1e-16);
+  const embree_state::emitter& e = emitters[i];
+  if (e.is_sphere) {
+    const double z = 1.0 - 2.0 * u, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * std::numbers::pi * u2;
+    out.normal = vec3(r * std::cos(phi), r * std::sin(phi), z);
+    out.point = e.p0 + e.radius * out.normal;
+  } else {
+    const double su = std::sqrt(u);
+    out.point = (1.0 - su) * e.p0 + su * (1.0 - u2) * e.p1 + su * u2 * e.p2;
+    out.normal = glm::normalize(glm::cross(e.p1 - e.p0, e.p2 - e.p0));
+  }
+  out.radiance = e.radiance;
+  out.pdf_area = 1.0 / total;
+  return out;
 }
 
 ray_scene::~ray_scene() {
@@ -219,6 +307,7 @@ std::optional<ray_hit> ray_scene::intersect(const vec3& origin, const vec3& dire
     hit.t = t ? *t : t_float;
     hit.point = origin + hit.t * direction;
     hit.normal = g.shape->normal(hit.point);
+    hit.face_normal = hit.normal;
     hit.uv = g.shape->uv(hit.point);
     hit.material = g.shape->is_sphere ? g.shape->ball.material : g.shape->q.material;
     return hit;
@@ -232,6 +321,7 @@ std::optional<ray_hit> ray_scene::intersect(const vec3& origin, const vec3& dire
   const double u = rh.hit.u, v = rh.hit.v;
   const vec3 shading = (1 - u - v) * m.normals[tri[0]] + u * m.normals[tri[1]] + v * m.normals[tri[2]];
   hit.normal = glm::length(shading) > 0 ? glm::normalize(shading) : face;
+  hit.face_normal = face;
   hit.uv = (1 - u - v) * m.uvs[tri[0]] + u * m.uvs[tri[1]] + v * m.uvs[tri[2]];
   hit.material = m.materials[rh.hit.primID];
   return hit;

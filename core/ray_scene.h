@@ -15,17 +15,28 @@ namespace bounce {
 struct ray_hit {
   double t = 0.0;
   vec3 point{0.0};
-  vec3 normal{0.0};  // unit; the surface's own side (polygon winding, sphere outward, quadric gradient)
+  vec3 normal{0.0};  // unit shading normal; the surface's own side (polygon winding, sphere outward, quadric gradient)
+  vec3 face_normal{0.0};  // unit geometric normal on the same side (the triangle's, for tessellated surfaces)
   vec2 uv{0.0};
   int surface = -1;
   int material = -1;
 };
 
+// A point on the emitting surfaces, drawn uniformly by area.
+struct emitter_sample {
+  vec3 point{0.0};
+  vec3 normal{0.0};     // the emitting side
+  rgb radiance{0.0};    // ke, emitted on the normal's side only
+  double pdf_area = 0;  // 1 / total emitting area
+};
+
 class ray_scene {
  public:
   // Patches (Bezier, B-spline) are traced through their tessellation at
-  // `patch_edge` with interpolated normals; spheres and quadrics exactly.
-  ray_scene(const scene& s, double patch_edge);
+  // `patch_edge` with interpolated normals (0: a quarter of the default
+  // element size, finer than the radiosity mesh so silhouettes stay
+  // smooth); spheres and quadrics exactly.
+  explicit ray_scene(const scene& s, double patch_edge = 0.0);
   ~ray_scene();
   ray_scene(const ray_scene&) = delete;
   ray_scene& operator=(const ray_scene&) = delete;
@@ -46,6 +57,15 @@ class ray_scene {
   // the surface grows only with t times the grazing angle. 1e-5 of the
   // bounding box diagonal, as for the form factors' shadow rays.
   double surface_offset() const { return offset_; }
+
+  // Area lights for next-event estimation: every emitting triangle (of
+  // polygon meshes and tessellated patches) and emitting sphere. Emitting
+  // quadrics are not sampled; their light arrives only when a ray hits them.
+  double emitter_area() const;
+  bool is_sampled_emitter(int surface) const;
+  // (u1, u2) in [0, 1)^2 to a point on the emitters, uniform by area; a
+  // stratified (u1, u2) gives stratified points.
+  emitter_sample sample_emitter(double u1, double u2) const;
 
  private:
   struct embree_state;

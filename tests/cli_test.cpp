@@ -148,15 +148,54 @@ TEST(Cli, CameraOverridesAreChecked) {
   EXPECT_NE(r.err.find("eye and target are the same point"), std::string::npos) << r.err;
 }
 
-TEST(Cli, CommandsNotBuiltYetSaySoAndFail) {
-  for (const char* command : {"trace", "bench"}) {
-    run_result r = run(command);
-    EXPECT_EQ(r.code, 3) << command;
-    EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command << ": " << r.err;
-  }
-  // Valid overrides pass the checks and still reach the honest refusal.
-  run_result r = run("trace --eye 278,273,-700 --target 278,273,0 --up 0,1,0 --fov 40 --size 320x240");
-  EXPECT_EQ(r.code, 3) << r.err;
+TEST(Cli, BenchIsNotBuiltYetAndSaysSo) {
+  run_result r = run("bench");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("not built yet"), std::string::npos) << r.err;
+}
+
+TEST(Cli, TraceWritesPngAndPfmAndReportsRays) {
+  scratch_dir dir;
+  run_result r = run("trace --size 48x36 --max-edge 150 --until 0.05 --spp 2 --out " + dir.path("a.png") + " --pfm " +
+                     dir.path("a.pfm"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("a.png")));
+  EXPECT_TRUE(std::filesystem::exists(dir.path("a.pfm")));
+  EXPECT_NE(r.out.find("radiosity: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("3456 primary"), std::string::npos) << r.out;  // 48 x 36 x 2
+  r = run("trace --integrator path --size 16x16 --spp 2 --out " + dir.path("b.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("radiosity: "), std::string::npos) << r.out;  // no radiosity pass
+  r = run("trace --no-radiosity --size 16x16 --out " + dir.path("c.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("one pass: ambient irradiance"), std::string::npos) << r.out;
+}
+
+TEST(Cli, TraceRejectsBadOptionsAndFiles) {
+  scratch_dir dir;
+  EXPECT_EQ(run("trace --integrator photon").code, 2);
+  EXPECT_EQ(run("trace --spp 0").code, 2);
+  EXPECT_EQ(run("trace --direct maybe").code, 2);
+  run_result r = run("trace " + dir.path("missing.json"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+  r = run("trace --size 8x8 --max-edge 200 --until 0.5 --out " + dir.path("no/such/folder/a.png"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("a.png"), std::string::npos) << r.err;
+}
+
+TEST(Cli, CompareReportsErrorsBetweenPictures) {
+  scratch_dir dir;
+  ASSERT_EQ(
+      run("trace --integrator path --size 16x16 --spp 4 --out " + dir.path("a.png") + " --pfm " + dir.path("a.pfm"))
+          .code,
+      0);
+  run_result r = run("compare " + dir.path("a.pfm") + " " + dir.path("a.pfm") + " --downsample 2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("relative RMSE 0.00000"), std::string::npos) << r.out;
+  r = run("compare " + dir.path("a.pfm") + " " + dir.path("missing.pfm"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("missing.pfm"), std::string::npos) << r.err;
 }
 
 TEST(Cli, ViewWithoutADisplaySaysSo) {

@@ -1,0 +1,155 @@
+#include "trace_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "patch_mesh.h"
+#include "radiosity.h"
+#include "radiosity_field.h"
+#include "ray_tracer.h"
+#include "scene_info.h"
+
+namespace bounce {
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+struct solved {
+  patch_mesh mesh;
+  std::unique_ptr<radiosity_state> state;
+};
+
+// Meshes and runs the progressive solver to the options' criterion.
+bool solve(const scene& s, const solver_options& solver, solved& out) {
+  std::string error;
+  if (!make_patch_mesh(s, to_mesher_params(solver, s), out.mesh, error)) {
+    std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
+    return false;
+  }
+  out.state = make_radiosity_state(s, out.mesh, to_radiosity_params(solver));
+  run_radiosity(*out.state, to_stop_criterion(solver), [](const radiosity_state&) {});
+  return true;
+}
+
+}  // namespace
+
+void add_trace_options(CLI::App& command, trace_options& options) {
+  command.add_option("--out", options.png_path, "PNG of the still (radiance x exposure, sRGB)")->capture_default_str();
+  command.add_option("--pfm", options.pfm_path, "PFM of the still in linear radiance, unscaled");
+  command.add_option("--integrator", options.integrator, "whitted (two-pass with radiosity) or path (reference)")
+      ->check(CLI::IsMember({"whitted", "path"}))
+      ->capture_default_str();
+  command.add_option("--spp", options.spp, "samples per pixel (1 = pixel centre; more are stratified)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  command
+      .add_option("--adaptive-spp", options.adaptive_spp,
+                  "trace pixels that differ from a neighbour again with this many samples (0: off)")
+      ->check(CLI::Range(0, 1 << 20));
+  command
+      .add_option("--depth", options.depth,
+                  "Whitted: depth of the specular tree (default 8); path: longest path (default 1000)")
+      ->check(CLI::Range(1, 100000));
+  command.add_option("--light-samples", options.light_samples, "Whitted: shadow rays to area emitters per hit")
+      ->check(CLI::Range(0, 1 << 16))
+      ->capture_default_str();
+  command
+      .add_option("--direct", options.direct,
+                  "Whitted two-pass: direct light by shadow rays (sharp) or from the radiosity solution")
+      ->check(CLI::IsMember({"rays", "radiosity"}))
+      ->capture_default_str();
+  command.add_flag("--no-radiosity", options.no_radiosity, "one-pass Whitted with a constant ambient term");
+  command
+      .add_option("--ambient", options.ambient,
+                  "one-pass ambient irradiance (default: mean indirect irradiance of a coarse solution)")
+      ->check(CLI::NonNegativeNumber);
+  command.add_option("--seed", options.seed, "random seed: the picture depends on it alone")->capture_default_str();
+  command.add_option("--exposure", options.exposure, "PNG value = radiance x exposure")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+int run_trace(const scene& s, const solver_options& solver, const trace_options& options) {
+  trace_params params;
+  params.method = options.integrator == "path" ? integrator::path : integrator::whitted;
+  params.spp = options.spp;
+  params.adaptive_spp = options.adaptive_spp;
+  if (options.depth > 0) (params.method == integrator::path ? params.max_path : params.max_depth) = options.depth;
+  params.light_samples = options.light_samples;
+  params.seed = options.seed;
+  params.diffuse = options.direct == "radiosity" ? diffuse_source::radiosity : diffuse_source::traced_direct;
+
+  // First pass: the radiosity solution, whose vertices the tracer's
+  // diffuse term interpolates. One-pass stills take only a constant
+  // ambient from a coarse solution (or the user).
+  solved pass;
+  std::unique_ptr<radiosity_field> field;
+  if (params.method == integrator::whitted && !options.no_radiosity) {
+    if (!solve(s, solver, pass)) return exit_input_error;
+    std::printf("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.mesh.element_count(),
+                static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
+                pass.state->stats.seconds);
+    field = std::make_unique<radiosity_field>(pass.mesh, pass.state->radiosity, pass.state->direct);
+  } else if (params.method == integrator::whitted) {
+    params.diffuse = diffuse_source::ambient;
+    if (options.ambient) {
+      params.ambient_irradiance = rgb(*options.ambient);
+    } else {
+      solver_options coarse = solver;
+      coarse.max_edge = 2.0 * default_max_edge(s);
+      if (!solve(s, coarse, pass)) return exit_input_error;
+      params.ambient_irradiance = mean_indirect_irradiance(*pass.state);
+    }
+    std::printf("one pass: ambient irradiance %.4g %.4g %.4g\n", params.ambient_irradiance.r,
+                params.ambient_irradiance.g, params.ambient_irradiance.b);
+  }
+
+  const auto build_start = clock_type::now();
+  const ray_scene rays(s);
+  const double build_seconds = std::chrono::duration<double>(clock_type::now() - build_start).count();
+
+  trace_progress progress;
+  trace_stats stats;
+  auto job =
+      std::async(std::launch::async, [&] { return trace_image(s, rays, field.get(), params, &progress, &stats); });
+  while (job.wait_for(std::chrono::seconds(1)) != std::future_status::ready) {
+    const long total = progress.pixels_total;
+    std::printf("tracing %5.1f%%\n", total > 0 ? 100.0 * double(progress.pixels_done) / double(total) : 0.0);
+    std::fflush(stdout);
+  }
+  const image img = job.get();
+
+  const double rays_total = double(stats.primary_rays + stats.shadow_rays + stats.secondary_rays);
+  std::printf(
+      "traced %dx%d (%s, %d spp%s) in %.3f s (scene build %.3f s): %llu primary, %llu shadow, %llu secondary rays, "
+      "%.2f Mrays/s\n",
+      img.width, img.height, options.integrator.c_str(), options.spp,
+      options.adaptive_spp ? (", " + std::to_string(stats.refined_pixels) + " pixels refined").c_str() : "",
+      stats.seconds, build_seconds, static_cast<unsigned long long>(stats.primary_rays),
+      static_cast<unsigned long long>(stats.shadow_rays), static_cast<unsigned long long>(stats.secondary_rays),
+      stats.seconds > 0 ? rays_total / stats.seconds * 1e-6 : 0.0);
+
+  std::string error;
+  const std::vector<unsigned char> rows = to_srgb_rows(img, options.exposure);
+  if (!write_png(options.png_path, img.width, img.height, 3, rows.data(), error)) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return exit_input_error;
+  }
+  std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(options.png_path).string().c_str(), img.width,
+              img.height);
+  if (!options.pfm_path.empty()) {
+    if (!write_pfm(options.pfm_path, img, error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return exit_input_error;
+    }
+    std::printf("wrote %s (linear radiance)\n", options.pfm_path.c_str());
+  }
+  return exit_ok;
+}
+
+}  // namespace bounce

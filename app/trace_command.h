@@ -1,0 +1,32 @@
+// `bounce trace`: solve (the radiosity pass), then ray trace a still of the
+// camera (Whitted, two-pass) or path trace a reference; PNG and PFM out.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "cli.h"
+
+namespace bounce {
+
+struct trace_options {
+  std::string png_path = "bounce-trace.png";  // --out
+  std::string pfm_path;                       // --pfm: linear radiance
+  std::string integrator = "whitted";         // whitted | path
+  int spp = 1;
+  int adaptive_spp = 0;
+  int depth = 0;  // 0: the integrator's default
+  int light_samples = 16;
+  std::string direct = "rays";    // rays | radiosity: where the Whitted tracer's direct light comes from
+  bool no_radiosity = false;      // one-pass Whitted with a constant ambient term
+  std::optional<double> ambient;  // its irradiance; default: the mean indirect irradiance of a coarse solution
+  std::uint64_t seed = 1;
+  double exposure = 1.0;
+};
+
+void add_trace_options(CLI::App& command, trace_options& options);
+
+int run_trace(const scene& s, const solver_options& solver, const trace_options& options);
+
+}  // namespace bounce
