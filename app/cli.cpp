@@ -307,6 +307,9 @@ int run_cli(int argc, char** argv) {
   CLI::App* view = commands[0].app;
   view->add_option("--frames", view_extra.frames, "scripted run: draw this many frames")->check(CLI::PositiveNumber);
   view->add_option("--screenshot", view_extra.screenshot_path, "after the scripted frames, save the window as PNG");
+  view->add_option(
+      "--still", view_extra.still_path,
+      "scripted run: ray trace a still at --size halfway through (as the panel's button does), save it as PNG");
   view->add_flag("--exit", view_extra.exit_after, "quit after the scripted frames");
   view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");
   view->add_option("--msaa", view_extra.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")

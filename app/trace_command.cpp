@@ -1,12 +1,16 @@
 #include "trace_command.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <future>
 #include <memory>
 
+#include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
+
+#include "camera_math.h"
 
 #include "patch_mesh.h"
 #include "radiosity.h"
@@ -69,6 +73,8 @@ void add_trace_options(CLI::App& command, trace_options& options) {
                   "one-pass ambient irradiance (default: mean indirect irradiance of a coarse solution)")
       ->check(CLI::NonNegativeNumber);
   command.add_option("--seed", options.seed, "random seed: the picture depends on it alone")->capture_default_str();
+  command.add_flag("--ray-baseline", options.ray_baseline,
+                   "also cast the pixel-centre rays alone (closest hit, no shading) and compare rates");
   command.add_option("--exposure", options.exposure, "PNG value = radiance x exposure")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -133,6 +139,28 @@ int run_trace(const scene& s, const solver_options& solver, const trace_options&
       stats.seconds, build_seconds, static_cast<unsigned long long>(stats.primary_rays),
       static_cast<unsigned long long>(stats.shadow_rays), static_cast<unsigned long long>(stats.secondary_rays),
       stats.seconds > 0 ? rays_total / stats.seconds * 1e-6 : 0.0);
+
+  if (options.ray_baseline) {
+    // The same scene's closest-hit query alone, on all cores, 10 passes over
+    // the pixel-centre rays: what the tracer's rate is measured against.
+    const int w = s.view.width, h = s.view.height, passes = 10;
+    std::atomic<std::size_t> hits{0};
+    const auto start = clock_type::now();
+    tbb::parallel_for(tbb::blocked_range<int>(0, h * passes), [&](const tbb::blocked_range<int>& r) {
+      std::size_t local = 0;
+      for (int row = r.begin(); row < r.end(); ++row)
+        for (int x = 0; x < w; ++x)
+          local += rays.intersect(s.view.eye, camera_ray_direction(s.view, x + 0.5, row % h + 0.5)).has_value();
+      hits += local;
+    });
+    const double seconds = std::chrono::duration<double>(clock_type::now() - start).count();
+    const double raw = double(w) * h * passes / seconds * 1e-6;
+    const double traced = stats.seconds > 0 ? rays_total / stats.seconds * 1e-6 : 0.0;
+    std::printf(
+        "ray baseline: closest hits alone %.2f Mrays/s (%zu hits); the tracer's %.2f Mrays/s, shading included, "
+        "is %.0f%% of it\n",
+        raw, hits.load(), traced, raw > 0 ? 100.0 * traced / raw : 0.0);
+  }
 
   std::string error;
   const std::vector<unsigned char> rows = to_srgb_rows(img, options.exposure);

@@ -23,6 +23,7 @@ struct trace_options {
   std::optional<double> ambient;  // its irradiance; default: the mean indirect irradiance of a coarse solution
   std::uint64_t seed = 1;
   double exposure = 1.0;
+  bool ray_baseline = false;  // also time bare closest-hit queries of the pixel-centre rays
 };
 
 void add_trace_options(CLI::App& command, trace_options& options);

@@ -264,6 +264,31 @@ TEST(Window, OpensUnderXvfbSolvesAndTakesAScreenshot) {
   EXPECT_GT(greenish, 1000);
 }
 
+TEST(Window, RayTracesAStillWhileTheViewRuns) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  scratch_dir dir;
+  // As the panel's button: the still of the current camera from the latest
+  // solution, traced on its own thread while frames keep coming.
+  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
+                              " view --size 120x120 --max-edge 80 --frames 30 --still " + dir.path("still.png") +
+                              " --screenshot " + dir.path("window.png") + " --exit >" + dir.path("out.txt") + " 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+  std::string error;
+  ASSERT_TRUE(read_png_rgb8(dir.path("still.png"), w, h, rgb, error)) << error;
+  EXPECT_EQ(w, 120);
+  EXPECT_EQ(h, 120);
+  int reddish = 0;
+  for (std::size_t i = 0; i < rgb.size(); i += 3) reddish += rgb[i] > rgb[i + 1] + 40 && rgb[i] > rgb[i + 2] + 40;
+  EXPECT_GT(reddish, 500);  // the red wall, lit
+  std::ifstream out(dir.path("out.txt"));
+  const std::string text((std::istreambuf_iterator<char>(out)), {});
+  EXPECT_NE(text.find("still: 120x120"), std::string::npos) << text;
+}
+
 TEST(HeadlessImages, NoArgumentsRendersTheDefaultScene) {
   scratch_dir dir;
   const std::string command = "cd " + dir.root.string() + " && env -u DISPLAY " + BOUNCE_EXE + " >out.txt 2>&1";

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 
 #include <imgui.h>
@@ -21,6 +23,7 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"R", "restart the solver"},
       {"G", "element wireframe"},
       {"P", "screenshot"},
+      {"T", "ray trace a still of the current camera"},
       {"H", "this help"},
       {"Esc", "quit"},
   };
@@ -56,7 +59,7 @@ std::vector<float> resample_log(const std::vector<convergence_point>& history, i
 
 }  // namespace
 
-panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms) {
+panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still) {
   panel_actions act;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
@@ -146,9 +149,45 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::SameLine();
     ImGui::Checkbox("with panel", &state.screenshot_with_panel);
   }
+  if (ImGui::CollapsingHeader("Ray-traced still", ImGuiTreeNodeFlags_DefaultOpen)) {
+    still_settings& st = state.still;
+    ImGui::Combo("integrator", &st.integrator, "Whitted, two-pass\0path tracer (reference)\0");
+    ImGui::SliderInt("samples per pixel", &st.spp, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
+    if (st.integrator == 0) ImGui::Combo("direct light", &st.direct, "shadow rays (sharp)\0from the radiosity\0");
+    ImGui::Checkbox("window size (else the scene camera's)", &st.window_size);
+    if (still.running) {
+      ImGui::ProgressBar(float(still.progress), ImVec2(-80, 0));
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel")) act.cancel_still = true;
+    } else if (ImGui::Button("Ray trace still (T)")) {
+      act.trace_still = true;
+    }
+  }
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   if (ImGui::Button("Help (H)")) state.show_help = true;
   ImGui::End();
+
+  if (still.texture) {
+    ImGui::SetNextWindowPos(ImVec2(340, 8), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Ray-traced still", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    // Shown at most 480 pixels wide; saved at full size.
+    const float scale = std::min(1.0f, 480.0f / float(std::max(still.width, 1)));
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(still.texture)),
+                 ImVec2(float(still.width) * scale, float(still.height) * scale));
+    ImGui::TextUnformatted(still.summary.c_str());
+    char path[1024];
+    std::snprintf(path, sizeof path, "%s", state.still.png_path.c_str());
+    ImGui::InputText("PNG", path, sizeof path);
+    state.still.png_path = path;
+    ImGui::SameLine();
+    if (ImGui::Button("Save##png")) act.save_still_png = true;
+    std::snprintf(path, sizeof path, "%s", state.still.pfm_path.c_str());
+    ImGui::InputText("PFM", path, sizeof path);
+    state.still.pfm_path = path;
+    ImGui::SameLine();
+    if (ImGui::Button("Save##pfm")) act.save_still_pfm = true;
+    ImGui::End();
+  }
 
   if (state.show_help) {
     ImGui::Begin("Keyboard and mouse", &state.show_help, ImGuiWindowFlags_AlwaysAutoResize);

@@ -12,6 +12,25 @@
 
 namespace bounce {
 
+// Settings of the ray-traced still that the panel starts.
+struct still_settings {
+  int integrator = 0;       // 0: Whitted two-pass, 1: path tracer (reference)
+  int spp = 4;              // samples per pixel
+  int direct = 0;           // Whitted: 0 direct light by shadow rays, 1 all diffuse light from the solution
+  bool window_size = true;  // trace at the window's size, else at the scene camera's
+  std::string png_path = "bounce-still.png";
+  std::string pfm_path = "bounce-still.pfm";
+};
+
+// What the window tells the panel about the still.
+struct still_status {
+  bool running = false;
+  double progress = 0.0;  // 0..1
+  unsigned texture = 0;   // GL texture of the last finished still, 0: none yet
+  int width = 0, height = 0;
+  std::string summary;
+};
+
 struct panel_state {
   std::string scene_path;
   std::vector<std::string> asset_scenes;  // offered in a list
@@ -19,6 +38,7 @@ struct panel_state {
   gl::display_settings display;
   bool screenshot_with_panel = false;
   std::string screenshot_path = "bounce-screenshot.png";
+  still_settings still;
   bool show_help = false;
   std::string message;  // last action's result, e.g. where a screenshot went
 };
@@ -29,11 +49,12 @@ struct panel_actions {
   bool pause = false, resume = false, step = false, restart = false;
   bool screenshot = false;
   bool frame_scene = false, reset_camera = false;
+  bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
 };
 
 // Draws the panel into the current ImGui frame. `frame_ms` is the last
 // frame's time, shown with the statistics.
-panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms);
+panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still = {});
 
 // The keyboard shortcuts, shown in the help popup and handled by the window.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

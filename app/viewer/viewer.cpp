@@ -21,6 +21,7 @@
 #include "panel.h"
 #include "scene_io.h"
 #include "solver_worker.h"
+#include "still_job.h"
 
 namespace bounce {
 namespace {
@@ -47,6 +48,28 @@ bool save_screenshot(const std::string& path, int width, int height, std::string
   for (int y = 0; y < height; ++y)
     std::copy_n(rgb.data() + std::size_t(height - 1 - y) * row, row, flipped.data() + std::size_t(y) * row);
   return write_png(path, width, height, 3, flipped.data(), error);
+}
+
+// The finished still as an sRGB texture for the panel's image window.
+void upload_still(unsigned& texture, const image& picture, double exposure) {
+  if (!texture) glGenTextures(1, &texture);
+  const std::vector<unsigned char> rows = to_srgb_rows(picture, exposure);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, picture.width, picture.height, 0, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+trace_params still_params(const still_settings& settings) {
+  trace_params p;
+  p.method = settings.integrator == 1 ? integrator::path : integrator::whitted;
+  p.spp = std::max(1, settings.spp);
+  p.diffuse = settings.direct == 1 ? diffuse_source::radiosity : diffuse_source::traced_direct;
+  return p;
 }
 
 }  // namespace
@@ -128,6 +151,7 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
     panel.scene_path = initial.source;
     panel.solver = solver;
     panel.asset_scenes = find_scenes("assets");
+    panel.still.window_size = options.still_path.empty();  // a scripted still has the scene camera's --size
     camera scene_camera = initial.view;
     orbit_state orbit = orbit_from_camera(scene_camera);
     std::uint64_t uploaded_mesh = 0, uploaded_version = ~0ull;
@@ -136,6 +160,12 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
     auto last_frame = std::chrono::steady_clock::now();
     double frame_ms = 0.0;
     std::string shown_error;
+    // The ray-traced still: traced on its own thread, shown as a texture.
+    still_job still;
+    still_status still_shown;
+    std::uint64_t still_uploaded = 0;
+    double still_exposure = 0.0;
+    int still_saved_frame = -1;  // scripted run: the frame the still was written in
 
     for (int frame = 1; code == exit_ok && !glfwWindowShouldClose(window); ++frame) {
       glfwPollEvents();
@@ -166,6 +196,27 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         ++uploads;
         uploaded_version = view->solution->version;
       }
+      if (const auto result = still.result();
+          result && (result->version != still_uploaded || panel.display.exposure != still_exposure)) {
+        upload_still(still_shown.texture, result->picture, panel.display.exposure);
+        still_shown.width = result->picture.width;
+        still_shown.height = result->picture.height;
+        still_shown.summary = result->summary;
+        still_uploaded = result->version;
+        still_exposure = panel.display.exposure;
+        if (!options.still_path.empty() && still_saved_frame < 0) {
+          std::string e;
+          const std::vector<unsigned char> rows = to_srgb_rows(result->picture, panel.display.exposure);
+          const bool saved =
+              write_png(options.still_path, result->picture.width, result->picture.height, 3, rows.data(), e);
+          std::printf("%s\n",
+                      saved ? ("still: " + result->summary + ", wrote " + options.still_path).c_str() : e.c_str());
+          if (!saved) code = exit_input_error;
+          still_saved_frame = frame;
+        }
+      }
+      still_shown.running = still.running();
+      still_shown.progress = still.progress();
       if (frame > 10) {  // past start-up (mesh upload, font atlas)
         frame_ms_sum += frame_ms;
         ++frames_timed;
@@ -231,6 +282,10 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
             case 'P':
               keys.screenshot = true;
               break;
+            case 't':
+            case 'T':
+              keys.trace_still = true;
+              break;
             case 'h':
             case 'H':
               panel.show_help = !panel.show_help;
@@ -248,7 +303,7 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      panel_actions act = draw_panel(panel, *view, frame_ms);
+      panel_actions act = draw_panel(panel, *view, frame_ms, still_shown);
       ImGui::Render();
       if (width > 0 && height > 0) {
         camera cam = camera_from_orbit(orbit, scene_camera);
@@ -262,7 +317,13 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         if (view->mesh) renderer.draw(view_projection, glm::vec3(cam.eye), panel.display);
-        const bool scripted_end = options.frames > 0 && frame >= options.frames;
+        // A scripted still starts halfway and the run waits for it.
+        if (!options.still_path.empty() && frame == std::max(1, options.frames / 2) && view->mesh)
+          keys.trace_still = true;
+        // ... and for its window to appear (ImGui lays new windows out over a frame or two).
+        const bool still_pending =
+            !options.still_path.empty() && (still_saved_frame < 0 || frame < still_saved_frame + 3);
+        const bool scripted_end = options.frames > 0 && frame >= options.frames && !still_pending;
         auto screenshot = [&](const std::string& path) {
           std::string e;
           if (save_screenshot(path, width, height, e))
@@ -300,8 +361,37 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         orbit_frame(orbit, view->source ? scene_bounds(*view->source) : scene_bounds(initial),
                     scene_camera.fov_y_degrees);
       if (act.reset_camera || keys.reset_camera) orbit = orbit_from_camera(scene_camera);
+      if ((act.trace_still || keys.trace_still) && view->source && !still.running()) {
+        camera cam = camera_from_orbit(orbit, scene_camera);
+        if (panel.still.window_size && width > 0 && height > 0) {
+          cam.width = width;
+          cam.height = height;
+        }
+        still.start(view->source, cam, view->mesh, view->solution, still_params(panel.still));
+        panel.message = "tracing a still...";
+      }
+      if (act.cancel_still) {
+        still.cancel();
+        panel.message = "still cancelled";
+      }
+      if ((act.save_still_png || act.save_still_pfm) && still.result()) {
+        const image& picture = still.result()->picture;
+        std::string e;
+        bool ok = true;
+        if (act.save_still_png) {
+          const std::vector<unsigned char> rows = to_srgb_rows(picture, panel.display.exposure);
+          ok = write_png(panel.still.png_path, picture.width, picture.height, 3, rows.data(), e);
+        } else {
+          ok = write_pfm(panel.still.pfm_path, picture, e);
+        }
+        panel.message =
+            ok ? "saved " + std::filesystem::absolute(act.save_still_png ? panel.still.png_path : panel.still.pfm_path)
+                                .string()
+               : e;
+      }
       if ((act.open_scene || act.apply_mesh)) panel.message.clear();
     }
+    if (still_shown.texture) glDeleteTextures(1, &still_shown.texture);
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

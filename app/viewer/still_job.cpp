@@ -1,0 +1,68 @@
+#include "still_job.h"
+
+#include <cstdio>
+
+namespace bounce {
+
+still_job::~still_job() {
+  cancel();
+}
+
+void still_job::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void still_job::cancel() {
+  progress_.cancel = true;
+  join();
+}
+
+double still_job::progress() const {
+  const long total = progress_.pixels_total;
+  return total > 0 ? std::min(1.0, double(progress_.pixels_done) / double(total)) : 0.0;
+}
+
+std::shared_ptr<const still_result> still_job::result() const {
+  const std::lock_guard lock(mutex_);
+  return result_;
+}
+
+void still_job::start(std::shared_ptr<const scene> source, const camera& view, std::shared_ptr<const patch_mesh> mesh,
+                      std::shared_ptr<const radiosity_snapshot> solution, const trace_params& params) {
+  cancel();
+  progress_.cancel = false;
+  progress_.pixels_done = 0;
+  progress_.pixels_total = 0;
+  running_ = true;
+  thread_ = std::thread([this, source, view, mesh, solution, params] {
+    scene s = *source;
+    s.view = view;
+    trace_params p = params;
+    const ray_scene rays(s);
+    std::unique_ptr<radiosity_field> field;
+    if (mesh && solution && solution->radiosity.size() == mesh->vertex_count()) {
+      const std::vector<rgb> radiosity(solution->radiosity.begin(), solution->radiosity.end());
+      const std::vector<rgb> direct(solution->direct.begin(), solution->direct.end());
+      field = std::make_unique<radiosity_field>(*mesh, radiosity, direct);
+    } else if (p.method == integrator::whitted) {
+      p.diffuse = diffuse_source::ambient;
+    }
+    auto out = std::make_shared<still_result>();
+    out->picture = trace_image(s, rays, field.get(), p, &progress_, &out->stats);
+    if (!out->stats.cancelled) {
+      const trace_stats& st = out->stats;
+      char line[256];
+      std::snprintf(
+          line, sizeof line, "%dx%d, %d spp%s: %.2f s, %.2f Mrays/s", s.view.width, s.view.height, p.spp,
+          p.method == integrator::path ? " path traced" : "", st.seconds,
+          st.seconds > 0 ? double(st.primary_rays + st.shadow_rays + st.secondary_rays) / st.seconds * 1e-6 : 0.0);
+      out->summary = line;
+      const std::lock_guard lock(mutex_);
+      out->version = ++finished_;
+      result_ = std::move(out);
+    }
+    running_ = false;
+  });
+}
+
+}  // namespace bounce
