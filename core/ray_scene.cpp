@@ -68,11 +68,18 @@ struct analytic_shape {
     return is_sphere ? glm::normalize(p - ball.center) : glm::normalize(quadric_gradient(q, p));
   }
 
+  // Spheres: longitude and latitude, v = 1 at the top (+y), where an
+  // image's top row goes. Quadrics have no natural parameters: cylindrical
+  // ones about the box's vertical axis (angle, height in the box).
   vec2 uv(const vec3& p) const {
-    if (!is_sphere) return vec2(0.0);
-    const vec3 n = glm::normalize(p - ball.center);
-    return {std::atan2(n.z, n.x) / (2.0 * std::numbers::pi) + 0.5,
-            std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
+    constexpr double two_pi = 2.0 * std::numbers::pi;
+    if (is_sphere) {
+      const vec3 n = glm::normalize(p - ball.center);
+      return {std::atan2(n.z, n.x) / two_pi + 0.5, 1.0 - std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
+    }
+    const vec3 centre = 0.5 * (q.box_min + q.box_max);
+    const double height = q.box_max.y - q.box_min.y;
+    return {std::atan2(p.z - centre.z, p.x - centre.x) / two_pi + 0.5, height > 0 ? (p.y - q.box_min.y) / height : 0.0};
   }
 };
 

@@ -72,6 +72,34 @@ TEST(Texture, ImageIsBilinearRepeatsAndHasItsTopRowAtVOne) {
   EXPECT_NEAR(texture_mean(t).g, 0.5, 1e-12);
 }
 
+TEST(Texture, SpheresAndQuadricsHaveParametersForTextures) {
+  scene s;
+  const int m = add_material(s, rgb(0.5));
+  surface ball;
+  ball.geometry = sphere{vec3(0.0), 1.0, m};
+  s.surfaces.push_back(ball);
+  surface tube;
+  quadric cylinder;  // x^2 + z^2 = 1, 0 <= y <= 2, around x = 5
+  cylinder.a = cylinder.c = 1;
+  cylinder.g = -5;  // (x - 5)^2 = x^2 - 10 x + 25
+  cylinder.k = 24;
+  cylinder.box_min = vec3(3.9, 0, -1.1);
+  cylinder.box_max = vec3(6.1, 2, 1.1);
+  cylinder.material = m;
+  tube.geometry = cylinder;
+  s.surfaces.push_back(tube);
+  const ray_scene rays(s);
+  // v = 1 at the sphere's top (+y), where an image's top row goes.
+  EXPECT_NEAR(rays.intersect(vec3(0, 5, 0), vec3(0, -1, 0))->uv.y, 1.0, 1e-9);
+  EXPECT_NEAR(rays.intersect(vec3(0, -5, 0), vec3(0, 1, 0))->uv.y, 0.0, 1e-9);
+  EXPECT_NEAR(rays.intersect(vec3(0, 0, -5), vec3(0, 0, 1))->uv.y, 0.5, 1e-9);
+  // The cylinder: height in its box, angle about its axis.
+  const auto side = rays.intersect(vec3(8, 1.5, 0), vec3(-1, 0, 0));
+  ASSERT_TRUE(side);
+  EXPECT_NEAR(side->uv.y, 0.75, 1e-9);
+  EXPECT_NEAR(side->uv.x, 0.5, 1e-9);  // angle 0 about the axis
+}
+
 // ---- emitters ----
 
 TEST(EmitterSampling, UniformByAreaOverEveryEmitter) {

@@ -154,7 +154,16 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::Combo("integrator", &st.integrator, "Whitted, two-pass\0path tracer (reference)\0");
     ImGui::SliderInt("samples per pixel", &st.spp, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
     if (st.integrator == 0) ImGui::Combo("direct light", &st.direct, "shadow rays (sharp)\0from the radiosity\0");
-    ImGui::Checkbox("window size (else the scene camera's)", &st.window_size);
+    ImGui::Checkbox("at the window's size", &st.window_size);
+    if (!st.window_size) {
+      if ((st.size[0] <= 0 || st.size[1] <= 0) && view.source) {  // start from the scene camera's
+        st.size[0] = view.source->view.width;
+        st.size[1] = view.source->view.height;
+      }
+      ImGui::InputInt2("size", st.size);
+      st.size[0] = std::clamp(st.size[0], 1, 16384);
+      st.size[1] = std::clamp(st.size[1], 1, 16384);
+    }
     if (still.running) {
       ImGui::ProgressBar(float(still.progress), ImVec2(-80, 0));
       ImGui::SameLine();

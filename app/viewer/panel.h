@@ -17,7 +17,8 @@ struct still_settings {
   int integrator = 0;       // 0: Whitted two-pass, 1: path tracer (reference)
   int spp = 4;              // samples per pixel
   int direct = 0;           // Whitted: 0 direct light by shadow rays, 1 all diffuse light from the solution
-  bool window_size = true;  // trace at the window's size, else at the scene camera's
+  bool window_size = true;  // trace at the window's size, else at `size`
+  int size[2] = {0, 0};     // width, height; 0: the scene camera's
   std::string png_path = "bounce-still.png";
   std::string pfm_path = "bounce-still.pfm";
 };

@@ -151,7 +151,11 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
     panel.scene_path = initial.source;
     panel.solver = solver;
     panel.asset_scenes = find_scenes("assets");
-    panel.still.window_size = options.still_path.empty();  // a scripted still has the scene camera's --size
+    if (!options.still_path.empty()) {  // a scripted still has the scene camera's --size
+      panel.still.window_size = false;
+      panel.still.size[0] = initial.view.width;
+      panel.still.size[1] = initial.view.height;
+    }
     camera scene_camera = initial.view;
     orbit_state orbit = orbit_from_camera(scene_camera);
     std::uint64_t uploaded_mesh = 0, uploaded_version = ~0ull;
@@ -366,6 +370,9 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         if (panel.still.window_size && width > 0 && height > 0) {
           cam.width = width;
           cam.height = height;
+        } else if (panel.still.size[0] > 0 && panel.still.size[1] > 0) {
+          cam.width = panel.still.size[0];
+          cam.height = panel.still.size[1];
         }
         still.start(view->source, cam, view->mesh, view->solution, still_params(panel.still));
         panel.message = "tracing a still...";
