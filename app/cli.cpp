@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench_command.h"
 #include "image_metrics.h"
 #include "render_command.h"
 #include "scene_info.h"
@@ -142,18 +143,6 @@ int run_compare(const std::string& test_path, const std::string& reference_path,
               relative_rmse(test, reference), mean_relative_error(test, reference), max_relative_error(test, reference),
               test.width, test.height, factor);
   return exit_ok;
-}
-
-// A command whose capability has not been built yet: it still checks its
-// options and scene, then says plainly that it cannot run.
-int run_not_built(const std::string& command, const std::string& issue, const std::string& path,
-                  const camera_options* camera_overrides) {
-  if (camera_overrides || !path.empty()) {
-    scene s;
-    if (!load_for_command(path, camera_overrides, s)) return exit_input_error;
-  }
-  std::cerr << "bounce " << command << ": not built yet (" << issue << ")\n";
-  return exit_not_built;
 }
 
 }  // namespace
@@ -310,6 +299,8 @@ int run_cli(int argc, char** argv) {
   view->add_option(
       "--still", view_extra.still_path,
       "scripted run: ray trace a still at --size halfway through (as the panel's button does), save it as PNG");
+  view->add_flag("--error-plot", view_extra.error_plot,
+                 "path trace a 64x64 reference of the camera at the start and plot the error against it");
   view->add_flag("--exit", view_extra.exit_after, "quit after the scripted frames");
   view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");
   view->add_option("--msaa", view_extra.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")
@@ -322,7 +313,9 @@ int run_cli(int argc, char** argv) {
                             "also solve the full matrix (small scenes) and report the difference");
   commands[3].app->add_flag("--ray-baseline", solve_extra.ray_baseline,
                             "replay 2M of the solver's shadow rays through Embree's rtcOccluded1 and compare rates");
-  CLI::App* bench = app.add_subcommand("bench", "measure speed against error");
+  CLI::App* bench = app.add_subcommand("bench", "measure speed against error: every method on every bench scene");
+  bench_options bench_extra;
+  add_bench_options(*bench, bench_extra);
   CLI::App* compare = app.add_subcommand("compare", "error of one PFM picture against a reference PFM");
   std::string compare_test, compare_reference;
   int compare_downsample = 1;
@@ -366,7 +359,7 @@ int run_cli(int argc, char** argv) {
     if (!load_for_command(commands[3].scene, &commands[3].camera, s)) return exit_input_error;
     return run_solve(s, commands[3].solver, solve_extra);
   }
-  if (bench->parsed()) return run_not_built("bench", "benchmarks arrive with issue #6", "", nullptr);
+  if (bench->parsed()) return run_bench_command(bench_extra);
 
   // No subcommand: the main job on the embedded Cornell box: the window
   // when there is a display, otherwise a headless render to bounce.png in

@@ -58,7 +58,6 @@ enum exit_code : int {
   exit_ok = 0,
   exit_input_error = 1,  // a scene or file that cannot be used
   exit_usage = 2,        // bad command line
-  exit_not_built = 3,    // a command whose capability is not built yet
 };
 
 int run_cli(int argc, char** argv);

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "bench.h"
 #include "occlusion.h"
 #include "patch_mesh.h"
 #include "ply.h"
@@ -22,19 +23,6 @@ using clock_type = std::chrono::steady_clock;
 
 nlohmann::json to_json(const rgb& c) {
   return {c.r, c.g, c.b};
-}
-
-// Largest |a - b| / |b| over vertices and channels, with values below 1e-6
-// of the largest |b| compared absolutely (dark vertices have no relative error).
-double max_relative_difference(const std::vector<rgb>& a, const std::vector<rgb>& b) {
-  double largest = 0.0;
-  for (const rgb& c : b) largest = std::max({largest, c.r, c.g, c.b});
-  const double floor = 1e-6 * largest;
-  double worst = 0.0;
-  for (std::size_t v = 0; v < a.size(); ++v)
-    for (int c = 0; c < 3; ++c)
-      worst = std::max(worst, std::abs(a[v][c] - b[v][c]) / std::max(std::abs(b[v][c]), floor));
-  return worst;
 }
 
 }  // namespace
@@ -108,8 +96,8 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
       std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
       return exit_input_error;
     }
-    const double difference = max_relative_difference(state->radiosity, ref.radiosity);
-    const double gs_difference = max_relative_difference(ref.radiosity_gauss_seidel, ref.radiosity);
+    const double difference = vertex_relative_error(state->radiosity, ref.radiosity).max;
+    const double gs_difference = vertex_relative_error(ref.radiosity_gauss_seidel, ref.radiosity).max;
     std::printf(
         "reference: matrix %.3f s, LU %.3f s (residual %.2e), Gauss-Seidel %.3f s, %d iterations (residual "
         "%.2e, differs from LU by %.2e)\n",

@@ -1,8 +1,11 @@
 // The `bounce` command line, run as a user would: exit codes and messages.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -148,10 +151,57 @@ TEST(Cli, CameraOverridesAreChecked) {
   EXPECT_NE(r.err.find("eye and target are the same point"), std::string::npos) << r.err;
 }
 
-TEST(Cli, BenchIsNotBuiltYetAndSaysSo) {
-  run_result r = run("bench");
-  EXPECT_EQ(r.code, 3);
-  EXPECT_NE(r.err.find("not built yet"), std::string::npos) << r.err;
+// The quick suite as a smoke test (its times are not checked): every
+// output is written, parses, and holds every scene and method with a
+// measured, finite error.
+TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
+  scratch_dir dir;
+  run_result r = run("bench --suite quick --out " + dir.path("bench"));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const nlohmann::json results = nlohmann::json::parse(slurp(dir.path("bench/bench.json")));
+  std::set<std::string> methods, scenes;
+  std::size_t points = 0;
+  for (const auto& c : results["cases"]) {
+    EXPECT_EQ(c["error"], "") << c.dump();
+    EXPECT_GT(c["peak_mib"].get<double>(), 1.0);
+    EXPECT_GT(c["cpu_seconds"].get<double>(), 0.0);
+    scenes.insert(c["scene"].get<std::string>());
+    for (const auto& curve : c["curves"]) {
+      methods.insert(curve["method"].get<std::string>());
+      ASSERT_FALSE(curve["points"].empty()) << curve["label"];
+      for (const auto& p : curve["points"]) {
+        ++points;
+        EXPECT_GT(p["seconds"].get<double>(), 0.0);
+        if (!c["growth"].get<bool>()) {
+          ASSERT_TRUE(p["error"].is_number()) << curve["label"];
+          EXPECT_GE(p["error"].get<double>(), 0.0);
+          EXPECT_LT(p["error"].get<double>(), 10.0) << curve["label"];
+        }
+      }
+    }
+  }
+  for (const char* m : {"raycast", "hemicube", "reference-lu", "gauss-seidel", "path", "two-pass"})
+    EXPECT_TRUE(methods.count(m)) << m;
+  for (const char* s :
+       {"cornell", "occluders", "furnace", "furnace-0.99", "sphere", "squares-perpendicular", "squares-parallel"}) {
+    EXPECT_TRUE(scenes.count(s)) << s;
+    EXPECT_EQ(slurp(dir.path("bench/" + std::string(s) + ".svg")).rfind("<svg", 0), 0u) << s;
+  }
+  // One CSV row per measured point, under a header.
+  const std::string csv = slurp(dir.path("bench/bench.csv"));
+  EXPECT_EQ(std::size_t(std::count(csv.begin(), csv.end(), '\n')), points + 1);
+  const std::string md = slurp(dir.path("bench/bench.md"));
+  EXPECT_NE(md.find("## Targets"), std::string::npos);
+  EXPECT_NE(md.find("## Growth with element count"), std::string::npos);
+  EXPECT_NE(md.find("Fitted exponents"), std::string::npos);
+  // The reference picture is cached and reused by the next run.
+  EXPECT_TRUE(std::filesystem::exists(dir.path("bench/reference/cornell-64px-1024spp.pfm")));
+}
+
+TEST(Cli, BenchRejectsAnUnknownSuite) {
+  run_result r = run("bench --suite huge");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--suite"), std::string::npos) << r.err;
 }
 
 TEST(Cli, TraceWritesPngAndPfmAndReportsRays) {

@@ -289,6 +289,33 @@ TEST(Window, RayTracesAStillWhileTheViewRuns) {
   EXPECT_NE(text.find("still: 120x120"), std::string::npos) << text;
 }
 
+TEST(Window, PlotsTheErrorAgainstAPathTracedReference) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  scratch_dir dir;
+  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
+                              " view --size 160x120 --max-edge 80 --until 1e-3 --frames 10 --error-plot --exit >" +
+                              dir.path("out.txt") + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream out(dir.path("out.txt"));
+  const std::string text((std::istreambuf_iterator<char>(out)), {});
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << text;
+  EXPECT_NE(text.find("64x64 path traced, 1024 spp"), std::string::npos) << text;
+  // "error plot: N measurements; error E0 at T0 s, E at T s": the last
+  // solution (80 mm elements) within 30% of the path tracer's picture.
+  const std::size_t at = text.find("error plot: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  int measurements = 0;
+  double e0 = 0, t0 = 0, e1 = 0, t1 = 0;
+  ASSERT_EQ(std::sscanf(text.c_str() + at, "error plot: %d measurements; error %lf at %lf s, %lf at %lf s",
+                        &measurements, &e0, &t0, &e1, &t1),
+            5)
+      << text;
+  EXPECT_GE(measurements, 1);
+  EXPECT_GT(e1, 0.0);
+  EXPECT_LT(e1, 0.3);
+}
+
 TEST(HeadlessImages, NoArgumentsRendersTheDefaultScene) {
   scratch_dir dir;
   const std::string command = "cd " + dir.root.string() + " && env -u DISPLAY " + BOUNCE_EXE + " >out.txt 2>&1";

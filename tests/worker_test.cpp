@@ -1,7 +1,12 @@
 // The solver thread: commands through one queue, an immutable view
 // published after every step, errors that keep the previous scene.
+#include <chrono>
+#include <cmath>
+#include <thread>
+
 #include <gtest/gtest.h>
 
+#include "error_tracker.h"
 #include "scene_io.h"
 #include "solver_worker.h"
 #include "test_files.h"
@@ -77,6 +82,57 @@ TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
   worker.wait_idle();
   EXPECT_TRUE(worker.latest()->error.empty());
   EXPECT_EQ(worker.latest()->mesh_version, before->mesh_version + 1);
+}
+
+// The window's error plot: a path-traced reference of the camera, then the
+// error of the published solutions against it, falling as the solver
+// converges; the finished run is remembered under its setting.
+TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
+  solver_worker worker;
+  error_tracker tracker;
+  worker.load(cornell(), coarse(1e-3));
+  worker.wait_idle();
+  const auto first = worker.latest();
+  EXPECT_FALSE(tracker.status("s").ready);
+  tracker.compute_reference(first->source, first->source->view, 32, 256);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!tracker.status("s").ready && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(tracker.status("s").ready);
+  EXPECT_NE(tracker.status("s").summary.find("32x32 path traced, 256 spp"), std::string::npos);
+
+  // A run measured from its start: three single steps, each measured, then
+  // on to the criterion.
+  worker.restart();
+  worker.pause();
+  worker.wait_idle();
+  error_status status;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t before = tracker.status("s").history.size();
+    worker.step();
+    worker.wait_idle();
+    tracker.observe(*worker.latest(), "s");
+    while (tracker.status("s").history.size() == before && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(tracker.status("s").history.size(), 3u);
+  worker.resume();
+  while (std::chrono::steady_clock::now() < deadline) {
+    tracker.observe(*worker.latest(), "s");
+    status = tracker.status("s");
+    if (status.last && std::isfinite(status.last->error)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(status.last.has_value());
+  ASSERT_GE(status.history.size(), 2u);
+  for (std::size_t i = 1; i < status.history.size(); ++i)
+    EXPECT_GE(status.history[i].seconds, status.history[i - 1].seconds);
+  EXPECT_LT(status.history.back().error, status.history.front().error);
+  EXPECT_LT(status.history.back().error, 0.3);  // 120 mm elements against 32x32 pixels: coarse, but close
+  EXPECT_EQ(status.last->error, status.history.back().error);
+  EXPECT_EQ(status.last->seconds, worker.latest()->solution->stats.seconds);
+  EXPECT_LE(status.last->unshot_fraction, 1e-3);
+  EXPECT_FALSE(tracker.status("another setting").last.has_value());
 }
 
 }  // namespace

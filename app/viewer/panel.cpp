@@ -42,24 +42,33 @@ std::vector<std::string> find_scenes(const std::string& folder) {
 
 namespace {
 
-// Unshot fraction against solver time, resampled to evenly spaced times so
-// the plot's x axis is time, on a log10 scale.
-std::vector<float> resample_log(const std::vector<convergence_point>& history, int samples) {
+// log10 of a quantity sampled at `samples` evenly spaced times in [0, end]
+// (the value last measured at or before each): the plot's x axis is time.
+template <typename point, typename quantity>
+std::vector<float> resample_log(const std::vector<point>& history, double end, int samples, quantity value) {
   std::vector<float> out;
   if (history.empty()) return out;
-  const double end = std::max(history.back().seconds, 1e-9);
+  end = std::max(end, 1e-9);
   std::size_t j = 0;
   for (int i = 0; i < samples; ++i) {
     const double t = end * i / (samples - 1);
     while (j + 1 < history.size() && history[j + 1].seconds <= t) ++j;
-    out.push_back(float(std::log10(std::max(history[j].unshot_fraction, 1e-12))));
+    out.push_back(float(std::log10(std::max(value(history[j]), 1e-12))));
   }
   return out;
 }
 
 }  // namespace
 
-panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still) {
+std::string setting_key(const solver_options& o) {
+  char key[160];
+  std::snprintf(key, sizeof key, "%s %d, edge %g, patches %g, until %g", o.method.c_str(),
+                o.method == "hemicube" ? o.hemicube_resolution : o.shadow_rays, o.max_edge, o.patch_edge, o.until);
+  return key;
+}
+
+panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still,
+                         const error_status& errors) {
   panel_actions act;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
@@ -120,11 +129,37 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::Text("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.shots) / seconds, double(st.rays) / seconds * 1e-6,
                 st.seconds);
     ImGui::Text("frame %.1f ms", frame_ms);
-    const std::vector<float> plot = resample_log(view.history, 120);
-    if (!plot.empty()) {
-      char label[64];
-      std::snprintf(label, sizeof label, "0 .. %.2f s", view.history.back().seconds);
+    // Unshot power and, against a reference, the error of the picture, on
+    // one time axis.
+    const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
+                                errors.history.empty() ? 0.0 : errors.history.back().seconds);
+    char label[64];
+    std::snprintf(label, sizeof label, "0 .. %.2f s", end);
+    const std::vector<float> plot =
+        resample_log(view.history, end, 120, [](const convergence_point& p) { return p.unshot_fraction; });
+    if (!plot.empty())
       ImGui::PlotLines("log10 unshot", plot.data(), int(plot.size()), 0, label, -8.0f, 0.0f, ImVec2(0, 80));
+    const std::vector<float> error_plot =
+        resample_log(errors.history, end, 120, [](const error_point& p) { return p.error; });
+    if (!error_plot.empty())
+      ImGui::PlotLines("log10 error", error_plot.data(), int(error_plot.size()), 0, label, -3.0f, 0.0f, ImVec2(0, 80));
+    if (errors.computing) {
+      ImGui::ProgressBar(float(errors.progress), ImVec2(-80, 0));
+      ImGui::SameLine();
+      ImGui::TextUnformatted("reference");
+    } else if (ImGui::Button("Reference for the error plot")) {
+      act.compute_reference = true;
+    }
+    ImGui::TextWrapped("%s", errors.summary.c_str());
+    if (!errors.history.empty())
+      ImGui::Text("error now %.2f%% (relative RMSE of the picture)", 100.0 * errors.history.back().error);
+    if (errors.last) {
+      if (std::isnan(errors.last->error))
+        ImGui::Text("last run with these settings: %.2f s to %.3g%% unshot", errors.last->seconds,
+                    100.0 * errors.last->unshot_fraction);
+      else
+        ImGui::Text("last run with these settings: %.2f s to %.3g%% unshot, error %.2f%%", errors.last->seconds,
+                    100.0 * errors.last->unshot_fraction, 100.0 * errors.last->error);
     }
   }
 

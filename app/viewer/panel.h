@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "error_tracker.h"
 #include "mesh_renderer.h"
 #include "solver_worker.h"
 
@@ -51,11 +52,17 @@ struct panel_actions {
   bool screenshot = false;
   bool frame_scene = false, reset_camera = false;
   bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
+  bool compute_reference = false;  // path trace a reference of the camera for the error plot
 };
 
 // Draws the panel into the current ImGui frame. `frame_ms` is the last
 // frame's time, shown with the statistics.
-panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still = {});
+panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still = {},
+                         const error_status& errors = {});
+
+// The solver setting a run is remembered under: method, its parameter,
+// element size and stopping point.
+std::string setting_key(const solver_options& options);
 
 // The keyboard shortcuts, shown in the help popup and handled by the window.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

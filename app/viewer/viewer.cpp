@@ -15,6 +15,7 @@
 #include <imgui.h>
 
 #include "camera_math.h"
+#include "error_tracker.h"
 #include "image.h"
 #include "mesh_renderer.h"
 #include "orbit.h"
@@ -170,6 +171,9 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
     std::uint64_t still_uploaded = 0;
     double still_exposure = 0.0;
     int still_saved_frame = -1;  // scripted run: the frame the still was written in
+    // Error against time: a path-traced reference of the camera on request.
+    error_tracker errors;
+    bool reference_requested = false;
 
     for (int frame = 1; code == exit_ok && !glfwWindowShouldClose(window); ++frame) {
       glfwPollEvents();
@@ -307,7 +311,10 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      panel_actions act = draw_panel(panel, *view, frame_ms, still_shown);
+      const std::string setting = setting_key(panel.solver);
+      errors.observe(*view, setting);
+      const error_status error_shown = errors.status(setting);
+      panel_actions act = draw_panel(panel, *view, frame_ms, still_shown, error_shown);
       ImGui::Render();
       if (width > 0 && height > 0) {
         camera cam = camera_from_orbit(orbit, scene_camera);
@@ -327,7 +334,9 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         // ... and for its window to appear (ImGui lays new windows out over a frame or two).
         const bool still_pending =
             !options.still_path.empty() && (still_saved_frame < 0 || frame < still_saved_frame + 3);
-        const bool scripted_end = options.frames > 0 && frame >= options.frames && !still_pending;
+        // ... and, with --error-plot, for the reference and a first measurement.
+        const bool error_pending = options.error_plot && (!error_shown.ready || error_shown.history.empty());
+        const bool scripted_end = options.frames > 0 && frame >= options.frames && !still_pending && !error_pending;
         auto screenshot = [&](const std::string& path) {
           std::string e;
           if (save_screenshot(path, width, height, e))
@@ -342,6 +351,15 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if ((act.screenshot || keys.screenshot || (scripted_end && !options.screenshot_path.empty())) && panel_in_shot)
           screenshot(scripted_end ? options.screenshot_path : panel.screenshot_path);
+        if (scripted_end && options.error_plot) {
+          if (error_shown.history.empty())
+            std::printf("error plot: no measurement yet (%s)\n", error_shown.summary.c_str());
+          else
+            std::printf("error plot: %zu measurements; error %.4f at %.3f s, %.4f at %.3f s (%s)\n",
+                        error_shown.history.size(), error_shown.history.front().error,
+                        error_shown.history.front().seconds, error_shown.history.back().error,
+                        error_shown.history.back().seconds, error_shown.summary.c_str());
+        }
         if (scripted_end && frames_timed > 0) {
           const std::shared_ptr<const patch_mesh> mesh = worker.latest()->mesh;
           std::printf(
@@ -376,6 +394,11 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         }
         still.start(view->source, cam, view->mesh, view->solution, still_params(panel.still));
         panel.message = "tracing a still...";
+      }
+      // The reference is of the camera as it is now, 64x64 pixels.
+      if ((act.compute_reference || (options.error_plot && !reference_requested)) && view->source) {
+        errors.compute_reference(view->source, camera_from_orbit(orbit, scene_camera), 64, 1024);
+        reference_requested = true;
       }
       if (act.cancel_still) {
         still.cancel();

@@ -16,6 +16,7 @@ struct viewer_options {
   bool start_paused = false;  // mesh and show the scene, shoot nothing until Start
   int msaa = -1;              // window samples; -1: 4 on GPUs, 0 on software GL (llvmpipe)
   std::string still_path;     // scripted run: trace a still (scene camera's size) halfway, wait, save it as PNG
+  bool error_plot = false;    // path trace a reference at the start and plot the solution's error against it
 };
 
 // Returns an exit code; without a display it says so and returns 1.

@@ -1,0 +1,431 @@
+#include "bench_command.h"
+
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bench.h"
+#include "cli.h"
+#include "scene_io.h"
+
+extern char** environ;
+
+namespace bounce {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct bench_scene {
+  const char* name;
+  const char* path;
+  exact_kind exact;
+};
+
+const bench_scene bench_scenes[] = {
+    {"cornell", default_scene_path, exact_kind::none},
+    {"occluders", "embedded:bench/occluders.json", exact_kind::none},
+    {"furnace", "embedded:bench/furnace.json", exact_kind::furnace},
+    {"furnace-0.99", "embedded:bench/furnace_099.json", exact_kind::furnace},
+    {"sphere", "embedded:bench/sphere.json", exact_kind::sphere_interior},
+    {"squares-perpendicular", "embedded:bench/squares_perpendicular.json", exact_kind::emitter_receiver},
+    {"squares-parallel", "embedded:bench/squares_parallel.json", exact_kind::emitter_receiver},
+};
+
+const bench_scene& find_scene(const std::string& name) {
+  for (const bench_scene& s : bench_scenes)
+    if (name == s.name) return s;
+  throw std::logic_error("bench: no scene " + name);
+}
+
+// One run of the suite: a scene, a solver and its setting.
+struct bench_case {
+  std::string scene;
+  bench_solver solver = bench_solver::progressive;
+  std::string method = "raycast";  // raycast | hemicube (progressive, reference)
+  int shadow_rays = 16;
+  int hemicube_resolution = 256;
+  double max_edge = 0.0;      // scene units
+  double patch_factor = 4.0;  // patch edge = this x max edge; 0: elements shoot
+  double until = 1e-3;
+  double max_seconds = 10.0;
+  bool growth = false;  // timings and memory only, for the growth with element count
+};
+
+struct suite_plan {
+  std::vector<bench_case> cases;
+  int picture_size = 64;     // bench pictures are picture_size^2
+  int reference_spp = 1024;  // path-traced reference
+};
+
+// Progressive runs of one scene: every method setting at every density.
+void add_progressive(suite_plan& plan, const std::string& scene, std::initializer_list<double> edges,
+                     std::initializer_list<int> rays, std::initializer_list<int> hemicubes, double max_seconds,
+                     double until = 1e-3) {
+  for (double edge : edges) {
+    for (int r : rays)
+      plan.cases.push_back({scene, bench_solver::progressive, "raycast", r, 256, edge, 4.0, until, max_seconds});
+    for (int h : hemicubes)
+      plan.cases.push_back({scene, bench_solver::progressive, "hemicube", 16, h, edge, 4.0, until, max_seconds});
+  }
+}
+
+void add_reference(suite_plan& plan, const std::string& scene, double edge) {
+  plan.cases.push_back({scene, bench_solver::reference, "raycast", 16, 256, edge, 0.0});
+}
+
+void add_path(suite_plan& plan, const std::string& scene, double max_seconds) {
+  bench_case c{scene, bench_solver::path_tracer};
+  c.max_seconds = max_seconds;
+  plan.cases.push_back(c);
+}
+
+void add_growth(suite_plan& plan, std::initializer_list<double> edges, double max_seconds) {
+  for (double edge : edges) {
+    bench_case c{"cornell", bench_solver::progressive, "raycast", 16, 256, edge, 4.0, 0.01, max_seconds};
+    c.growth = true;
+    plan.cases.push_back(c);
+  }
+}
+
+suite_plan make_suite(const std::string& suite) {
+  suite_plan plan;
+  if (suite == "quick") {
+    // A smoke run: every scene and method once, small meshes, short runs.
+    add_progressive(plan, "cornell", {150}, {4, 16}, {64}, 3.0);
+    add_progressive(plan, "cornell", {60}, {16}, {}, 3.0);
+    add_reference(plan, "cornell", 150);
+    add_path(plan, "cornell", 2.0);
+    add_progressive(plan, "occluders", {0.5}, {16}, {}, 2.0);
+    add_path(plan, "occluders", 1.0);
+    add_progressive(plan, "furnace", {0.5}, {16}, {64}, 2.0);
+    add_reference(plan, "furnace", 0.5);
+    add_progressive(plan, "furnace-0.99", {0.5}, {16}, {}, 2.0);
+    add_progressive(plan, "sphere", {0.5}, {16}, {}, 2.0);
+    add_progressive(plan, "squares-perpendicular", {0.1}, {16}, {64}, 2.0);
+    add_progressive(plan, "squares-parallel", {0.1}, {16}, {}, 2.0);
+    add_growth(plan, {150, 100}, 5.0);
+    plan.picture_size = 64;
+    plan.reference_spp = 1024;
+    return plan;
+  }
+  // full
+  add_progressive(plan, "cornell", {100, 60, 30}, {4, 16, 64}, {}, 25.0);
+  add_progressive(plan, "cornell", {60}, {}, {64, 128, 256}, 25.0);
+  add_progressive(plan, "cornell", {30}, {}, {128}, 25.0);
+  plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 16, 256, 60, 0.0, 1e-3, 25.0});
+  add_reference(plan, "cornell", 100);
+  add_reference(plan, "cornell", 60);
+  add_path(plan, "cornell", 40.0);
+  add_progressive(plan, "occluders", {0.27, 0.135}, {4, 16}, {}, 20.0);
+  add_progressive(plan, "occluders", {0.27}, {}, {128}, 20.0);
+  add_path(plan, "occluders", 20.0);
+  add_progressive(plan, "furnace", {0.5, 0.25}, {4, 16}, {64, 256}, 10.0);
+  add_reference(plan, "furnace", 0.5);
+  add_progressive(plan, "furnace-0.99", {0.5}, {16}, {}, 40.0);
+  add_reference(plan, "furnace-0.99", 0.5);
+  add_progressive(plan, "sphere", {0.5, 0.25}, {16}, {}, 15.0);
+  add_progressive(plan, "sphere", {0.25}, {}, {128}, 15.0);
+  add_reference(plan, "sphere", 0.5);
+  add_progressive(plan, "squares-perpendicular", {0.1, 0.05}, {1, 16}, {64, 256}, 10.0);
+  add_progressive(plan, "squares-parallel", {0.1, 0.05}, {16}, {256}, 10.0);
+  add_growth(plan, {70, 30, 15, 7.5}, 45.0);
+  plan.picture_size = 128;
+  plan.reference_spp = 4096;
+  return plan;
+}
+
+const char* solver_name(bench_solver s) {
+  switch (s) {
+    case bench_solver::progressive:
+      return "progressive";
+    case bench_solver::reference:
+      return "reference";
+    case bench_solver::path_tracer:
+      return "path";
+  }
+  return "";
+}
+
+// The label of a curve: its method with the setting that matters for it.
+std::string curve_label(const bench_case& c, const std::string& curve_method) {
+  char buffer[160];
+  if (c.solver == bench_solver::path_tracer) return "path tracer";
+  std::string setting;
+  if (c.solver == bench_solver::progressive)
+    setting =
+        c.method == "hemicube" ? " " + std::to_string(c.hemicube_resolution) : " " + std::to_string(c.shadow_rays);
+  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s", setting.c_str(), c.max_edge,
+                c.solver == bench_solver::progressive && c.patch_factor == 0.0 ? ", element shooters" : "",
+                c.growth ? ", growth" : "");
+  std::string base = curve_method;
+  const std::size_t plus = base.find(" + ");
+  const std::string suffix = plus == std::string::npos ? "" : base.substr(plus);
+  if (plus != std::string::npos) base.resize(plus);
+  return base + buffer + suffix;
+}
+
+bool load_bench_scene(const bench_case& c, int picture_size, scene& s, std::string& error) {
+  load_report report;
+  if (!load_scene(find_scene(c.scene).path, s, report)) {
+    error = report.error;
+    return false;
+  }
+  s.view.width = s.view.height = picture_size;
+  return true;
+}
+
+fs::path reference_path(const std::string& out_dir, const std::string& scene, int size, int spp) {
+  return fs::path(out_dir) / "reference" /
+         (scene + "-" + std::to_string(size) + "px-" + std::to_string(spp) + "spp.pfm");
+}
+
+json point_json(const bench_point& p) {
+  auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  return {{"seconds", p.seconds},
+          {"cpu_seconds", number(p.cpu_seconds)},
+          {"shots", p.shots},
+          {"rays", p.rays},
+          {"unshot_fraction", number(p.unshot_fraction)},
+          {"error", number(p.error)},
+          {"max_error", number(p.max_error)},
+          {"power_error", number(p.power_error)},
+          {"balance_error", number(p.balance_error)}};
+}
+
+// Runs case `index` in this process and writes its JSON.
+int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) {
+  const bench_case& c = plan.cases[std::size_t(index)];
+  scene s;
+  std::string error;
+  if (!load_bench_scene(c, plan.picture_size, s, error)) {
+    std::cerr << "error: " << error << "\n";
+    return exit_input_error;
+  }
+  bench_setting setting;
+  setting.solver = c.solver;
+  setting.form_factors.method = c.method == "hemicube" ? form_factor_method::hemicube : form_factor_method::raycast;
+  setting.form_factors.shadow_rays = c.shadow_rays;
+  setting.form_factors.hemicube_resolution = c.hemicube_resolution;
+  setting.mesher.max_edge = c.max_edge;
+  setting.mesher.patch_edge = c.patch_factor * c.max_edge;
+  setting.until = c.until;
+  setting.max_seconds = c.max_seconds;
+  setting.measure_error = !c.growth;
+
+  bench_truth truth;
+  truth.exact = find_scene(c.scene).exact;
+  if (truth.exact == exact_kind::none && setting.measure_error) {
+    const fs::path path = reference_path(out_dir, c.scene, plan.picture_size, plan.reference_spp);
+    if (!read_pfm(path.string(), truth.picture, error)) {
+      std::cerr << "error: " << error << "\n";
+      return exit_input_error;
+    }
+    truth.exclude_above = emitter_threshold(s);
+  }
+  const bench_result r = run_bench(s, setting, truth);
+  json curves = json::array();
+  for (const bench_curve& curve : r.curves) {
+    json points = json::array();
+    for (const bench_point& p : curve.points) points.push_back(point_json(p));
+    const std::size_t plus = curve.method.find(" + ");
+    curves.push_back({{"label", curve_label(c, curve.method)},
+                      {"method", plus == std::string::npos ? curve.method : "two-pass"},
+                      {"points", points}});
+  }
+  auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json j = {{"index", index},
+            {"scene", c.scene},
+            {"truth", truth.exact == exact_kind::none ? "path-traced picture" : "closed form"},
+            {"solver", solver_name(c.solver)},
+            {"method", c.solver == bench_solver::path_tracer ? "path" : c.method},
+            {"shadow_rays", c.shadow_rays},
+            {"hemicube_resolution", c.hemicube_resolution},
+            {"max_edge", c.max_edge},
+            {"patch_edge", c.patch_factor * c.max_edge},
+            {"growth", c.growth},
+            {"elements", r.elements},
+            {"vertices", r.vertices},
+            {"patches", r.patches},
+            {"setup_seconds", r.setup_seconds},
+            {"first_picture_seconds", number(r.first_picture_seconds)},
+            {"seconds_per_shot", number(r.seconds_per_shot)},
+            {"error", r.error},
+            {"curves", curves}};
+  const fs::path file = fs::path(out_dir) / "cases" / (std::to_string(index) + ".json");
+  std::ofstream out(file);
+  out << j.dump() << "\n";
+  if (!out) {
+    std::cerr << "error: " << file.string() << ": cannot write\n";
+    return exit_input_error;
+  }
+  return exit_ok;
+}
+
+struct child_usage {
+  int status = -1;
+  double wall_seconds = 0.0, cpu_seconds = 0.0, peak_mib = 0.0;
+};
+
+// Runs `bounce bench ... --run-case N` and waits for it: its own wall time,
+// CPU time (all threads) and peak resident memory.
+child_usage run_child(const std::vector<std::string>& args) {
+  child_usage u;
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ) != 0) return u;
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) return u;
+  u.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  u.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  u.cpu_seconds = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                  1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  u.peak_mib = double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
+  return u;
+}
+
+// The reference pictures the suite needs, from the cache under out_dir or
+// path traced now (and cached).
+bool prepare_references(const suite_plan& plan, const std::string& out_dir, json& notes) {
+  std::vector<std::string> done;
+  for (const bench_case& c : plan.cases) {
+    if (c.growth || find_scene(c.scene).exact != exact_kind::none) continue;
+    if (std::find(done.begin(), done.end(), c.scene) != done.end()) continue;
+    done.push_back(c.scene);
+    const fs::path path = reference_path(out_dir, c.scene, plan.picture_size, plan.reference_spp);
+    json note = {{"scene", c.scene}, {"file", path.string()}, {"spp", plan.reference_spp}, {"size", plan.picture_size}};
+    if (fs::exists(path)) {
+      std::cout << "bench: reference " << path.string() << " (cached)\n";
+      note["cached"] = true;
+    } else {
+      scene s;
+      std::string error;
+      if (!load_bench_scene(c, plan.picture_size, s, error)) {
+        std::cerr << "error: " << error << "\n";
+        return false;
+      }
+      std::cout << "bench: path tracing the reference of " << c.scene << " (" << plan.picture_size << "x"
+                << plan.picture_size << ", " << plan.reference_spp << " spp) ..." << std::flush;
+      const auto start = std::chrono::steady_clock::now();
+      const image reference = path_reference(s, plan.reference_spp, 1);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::cout << " " << seconds << " s\n";
+      if (!write_pfm(path.string(), reference, error)) {
+        std::cerr << "error: " << error << "\n";
+        return false;
+      }
+      note["cached"] = false;
+      note["seconds"] = seconds;
+    }
+    notes.push_back(note);
+  }
+  return true;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+}  // namespace
+
+void add_bench_options(CLI::App& command, bench_options& options) {
+  command.add_option("--suite", options.suite, "quick: every method once, under 2 minutes; full: under 20")
+      ->check(CLI::IsMember({"quick", "full"}))
+      ->capture_default_str();
+  command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
+      ->capture_default_str();
+  command.add_option("--run-case", options.run_case, "internal: run one case of the suite in this process")->group("");
+}
+
+int run_bench_command(const bench_options& options) {
+  const suite_plan plan = make_suite(options.suite);
+  if (options.run_case >= 0) {
+    if (options.run_case >= int(plan.cases.size())) {
+      std::cerr << "error: --run-case " << options.run_case << ": the " << options.suite << " suite has "
+                << plan.cases.size() << " cases\n";
+      return exit_usage;
+    }
+    return run_one_case(plan, options.run_case, options.out_dir);
+  }
+  std::error_code ec;
+  fs::create_directories(fs::path(options.out_dir) / "cases", ec);
+  fs::create_directories(fs::path(options.out_dir) / "reference", ec);
+  if (ec) {
+    std::cerr << "error: " << options.out_dir << ": " << ec.message() << "\n";
+    return exit_input_error;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  json results = {{"suite", options.suite},
+                  {"machine", {{"cpu", cpu_model()}, {"threads", std::thread::hardware_concurrency()}}},
+                  {"picture_size", plan.picture_size},
+                  {"reference_spp", plan.reference_spp},
+                  {"references", json::array()},
+                  {"cases", json::array()}};
+  if (!prepare_references(plan, options.out_dir, results["references"])) return exit_input_error;
+
+  int failures = 0;
+  for (std::size_t i = 0; i < plan.cases.size(); ++i) {
+    const bench_case& c = plan.cases[i];
+    std::printf("bench: [%zu/%zu] %-22s %-11s %-8s edge %-6g ...", i + 1, plan.cases.size(), c.scene.c_str(),
+                solver_name(c.solver), c.method.c_str(), c.max_edge);
+    std::fflush(stdout);
+    const child_usage usage = run_child(
+        {"bounce", "bench", "--suite", options.suite, "--out", options.out_dir, "--run-case", std::to_string(i)});
+    json j;
+    const fs::path file = fs::path(options.out_dir) / "cases" / (std::to_string(i) + ".json");
+    if (usage.status == 0) {
+      std::ifstream in(file);
+      j = json::parse(in, nullptr, false);
+    }
+    if (usage.status != 0 || j.is_discarded()) {
+      ++failures;
+      j = {{"index", i},
+           {"scene", c.scene},
+           {"solver", solver_name(c.solver)},
+           {"method", c.method},
+           {"error", "the run failed (exit status " + std::to_string(usage.status) + ")"},
+           {"curves", json::array()}};
+    }
+    j["wall_seconds"] = usage.wall_seconds;
+    j["cpu_seconds"] = usage.cpu_seconds;
+    j["peak_mib"] = usage.peak_mib;
+    std::printf(" %6.2f s, %6.1f MiB%s\n", usage.wall_seconds, usage.peak_mib,
+                j["error"].get<std::string>().empty() ? "" : ("  (" + j["error"].get<std::string>() + ")").c_str());
+    results["cases"].push_back(j);
+  }
+  results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const fs::path json_path = fs::path(options.out_dir) / "bench.json";
+  std::ofstream(json_path) << results.dump(1) << "\n";
+  const std::string markdown = write_bench_report(results, options.out_dir);
+  std::cout << "\n" << markdown << "\n";
+  std::printf("bench: %zu runs in %.1f s; results in %s (bench.json, bench.csv, bench.md, one SVG plot per scene)\n",
+              plan.cases.size(), results["seconds"].get<double>(), options.out_dir.c_str());
+  if (failures) {
+    std::fprintf(stderr, "error: %d run(s) failed; see bench.json\n", failures);
+    return exit_input_error;
+  }
+  return exit_ok;
+}
+
+}  // namespace bounce

@@ -1,0 +1,355 @@
+// The bench's report: CSV (one row per measured point), an SVG plot of
+// error against time per scene, and a Markdown summary with the Pareto
+// front, the targets of issue #6 and the growth with element count.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench.h"
+#include "bench_command.h"
+
+namespace bounce {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+double number(const json& j) {
+  return j.is_number() ? j.get<double>() : not_measured;
+}
+
+std::string format(const char* fmt, double v) {
+  if (!std::isfinite(v)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, fmt, v);
+  return buffer;
+}
+
+std::string percent(double v) {
+  if (!std::isfinite(v)) return "-";
+  return v < 1e-4 ? format("%.1e", v * 100.0) + "%" : format("%.3g", v * 100.0) + "%";
+}
+
+bench_curve to_curve(const json& c) {
+  bench_curve curve;
+  curve.method = c["method"].get<std::string>();
+  for (const json& p : c["points"]) {
+    bench_point q;
+    q.seconds = number(p["seconds"]);
+    q.error = number(p["error"]);
+    curve.points.push_back(q);
+  }
+  return curve;
+}
+
+// Every curve of every (non-growth) case of a scene, in suite order.
+struct scene_curves {
+  std::vector<const json*> cases;   // per curve
+  std::vector<const json*> curves;  // the curve's JSON
+};
+
+std::map<std::string, scene_curves> curves_by_scene(const json& results) {
+  std::map<std::string, scene_curves> out;
+  for (const json& c : results["cases"]) {
+    if (c.value("growth", false)) continue;
+    for (const json& curve : c["curves"]) {
+      auto& s = out[c["scene"].get<std::string>()];
+      s.cases.push_back(&c);
+      s.curves.push_back(&curve);
+    }
+  }
+  return out;
+}
+
+// Pareto flags per point, per curve of one scene.
+std::vector<std::vector<bool>> front_of(const scene_curves& sc) {
+  std::vector<double> t, e;
+  for (const json* curve : sc.curves)
+    for (const json& p : (*curve)["points"]) {
+      t.push_back(number(p["seconds"]));
+      e.push_back(number(p["error"]));
+    }
+  const std::vector<bool> flags = pareto_front(t, e);
+  std::vector<std::vector<bool>> out;
+  std::size_t k = 0;
+  for (const json* curve : sc.curves) {
+    out.emplace_back();
+    for (std::size_t i = 0; i < (*curve)["points"].size(); ++i) out.back().push_back(flags[k++]);
+  }
+  return out;
+}
+
+void write_csv(const json& results, const std::string& out_dir) {
+  std::ofstream out(fs::path(out_dir) / "bench.csv");
+  out << "scene,curve,method,solver,shadow_rays,hemicube_resolution,max_edge,patch_edge,elements,vertices,patches,"
+         "run_wall_seconds,run_cpu_seconds,peak_mib,seconds,cpu_seconds,shots,rays,unshot_fraction,error,max_error,"
+         "power_error,balance_error,pareto\n";
+  const auto by_scene = curves_by_scene(results);
+  std::map<const json*, std::vector<bool>> fronts;
+  for (const auto& [name, sc] : by_scene) {
+    const auto f = front_of(sc);
+    for (std::size_t i = 0; i < sc.curves.size(); ++i) fronts[sc.curves[i]] = f[i];
+  }
+  auto cell = [](const json& j) -> std::string {
+    if (j.is_null()) return "";
+    if (j.is_string()) return "\"" + j.get<std::string>() + "\"";
+    return j.dump();
+  };
+  for (const json& c : results["cases"]) {
+    for (const json& curve : c["curves"]) {
+      const auto& flags = fronts[&curve];
+      std::size_t i = 0;
+      for (const json& p : curve["points"]) {
+        out << cell(c["scene"]) << "," << cell(curve["label"]) << "," << cell(curve["method"]) << ","
+            << cell(c["solver"]) << "," << cell(c["shadow_rays"]) << "," << cell(c["hemicube_resolution"]) << ","
+            << cell(c["max_edge"]) << "," << cell(c["patch_edge"]) << "," << cell(c["elements"]) << ","
+            << cell(c["vertices"]) << "," << cell(c["patches"]) << "," << cell(c["wall_seconds"]) << ","
+            << cell(c["cpu_seconds"]) << "," << cell(c["peak_mib"]) << "," << cell(p["seconds"]) << ","
+            << cell(p["cpu_seconds"]) << "," << cell(p["shots"]) << "," << cell(p["rays"]) << ","
+            << cell(p["unshot_fraction"]) << "," << cell(p["error"]) << "," << cell(p["max_error"]) << ","
+            << cell(p["power_error"]) << "," << cell(p["balance_error"]) << ","
+            << (i < flags.size() && flags[i] ? 1 : 0) << "\n";
+        ++i;
+      }
+    }
+  }
+}
+
+// Error against time, log-log, one polyline per curve, the Pareto front's
+// points ringed.
+void write_svg(const std::string& scene, const scene_curves& sc, const std::string& error_name,
+               const std::string& path) {
+  constexpr double width = 900, height = 520, left = 70, right = 330, top = 40, bottom = 50;
+  constexpr double floor = 1e-7;  // errors below this (exact to round-off) are drawn on the floor
+  double t_lo = 1e300, t_hi = 0, e_lo = 1e300, e_hi = 0;
+  for (const json* curve : sc.curves)
+    for (const json& p : (*curve)["points"]) {
+      const double t = number(p["seconds"]), e = number(p["error"]);
+      if (!(t > 0) || std::isnan(e)) continue;
+      t_lo = std::min(t_lo, t);
+      t_hi = std::max(t_hi, t);
+      e_lo = std::min(e_lo, std::max(e, floor));
+      e_hi = std::max(e_hi, std::max(e, floor));
+    }
+  std::ofstream out(path);
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"24\" font-size=\"15\">" << scene << ": " << error_name
+      << " against time (log-log)</text>\n";
+  if (t_hi <= 0) {
+    out << "<text x=\"" << left << "\" y=\"80\">no measured points</text>\n</svg>\n";
+    return;
+  }
+  const double lt0 = std::floor(std::log10(t_lo)), lt1 = std::max(std::ceil(std::log10(t_hi)), lt0 + 1);
+  const double le0 = std::floor(std::log10(e_lo)), le1 = std::max(std::ceil(std::log10(e_hi)), le0 + 1);
+  const double pw = width - left - right, ph = height - top - bottom;
+  auto x_of = [&](double t) { return left + (std::log10(t) - lt0) / (lt1 - lt0) * pw; };
+  auto y_of = [&](double e) { return top + (le1 - std::log10(std::max(e, floor))) / (le1 - le0) * ph; };
+  out << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
+      << "\" fill=\"none\" stroke=\"#888\"/>\n";
+  for (double d = lt0; d <= lt1; ++d) {
+    const double x = x_of(std::pow(10.0, d));
+    out << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + ph
+        << "\" stroke=\"#ddd\"/><text x=\"" << x << "\" y=\"" << top + ph + 16 << "\" text-anchor=\"middle\">"
+        << format("%g", std::pow(10.0, d)) << "</text>\n";
+  }
+  for (double d = le0; d <= le1; ++d) {
+    const double y = y_of(std::pow(10.0, d));
+    out << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + pw << "\" y2=\"" << y
+        << "\" stroke=\"#ddd\"/><text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">"
+        << format("%g", std::pow(10.0, d)) << "</text>\n";
+  }
+  out << "<text x=\"" << left + pw / 2 << "\" y=\"" << height - 12 << "\" text-anchor=\"middle\">seconds</text>\n";
+  out << "<text transform=\"translate(16," << top + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << error_name
+      << "</text>\n";
+  static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+                                  "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#aec7e8"};
+  const auto fronts = front_of(sc);
+  for (std::size_t i = 0; i < sc.curves.size(); ++i) {
+    const json& curve = *sc.curves[i];
+    const char* colour = colours[i % std::size(colours)];
+    const bool dashed = curve["method"] == "two-pass" || curve["method"] == "path";
+    std::ostringstream points;
+    std::size_t k = 0;
+    for (const json& p : curve["points"]) {
+      const double t = number(p["seconds"]), e = number(p["error"]);
+      if (t > 0 && !std::isnan(e)) {
+        points << x_of(t) << "," << y_of(e) << " ";
+        out << "<circle cx=\"" << x_of(t) << "\" cy=\"" << y_of(e) << "\" r=\"" << (fronts[i][k] ? 4 : 2)
+            << "\" fill=\"" << (fronts[i][k] ? "none" : colour) << "\" stroke=\"" << colour << "\"/>\n";
+      }
+      ++k;
+    }
+    out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\""
+        << (dashed ? " stroke-dasharray=\"5,3\"" : "") << " points=\"" << points.str() << "\"/>\n";
+    const double ly = top + 14 + 15 * double(i);
+    out << "<line x1=\"" << left + pw + 12 << "\" y1=\"" << ly - 4 << "\" x2=\"" << left + pw + 36 << "\" y2=\""
+        << ly - 4 << "\" stroke=\"" << colour << "\" stroke-width=\"2\"" << (dashed ? " stroke-dasharray=\"5,3\"" : "")
+        << "/><text x=\"" << left + pw + 42 << "\" y=\"" << ly << "\">" << curve["label"].get<std::string>()
+        << "</text>\n";
+  }
+  out << "<text x=\"" << left + pw + 12 << "\" y=\"" << height - 12
+      << "\" fill=\"#555\">rings: on the Pareto front</text>\n</svg>\n";
+}
+
+const json& last_point(const json& curve) {
+  return curve["points"].back();
+}
+
+std::string error_name_of(const scene_curves& sc) {
+  return sc.cases.front()->value("truth", "") == "closed form" ? "relative RMSE per vertex"
+                                                               : "relative RMSE of the picture";
+}
+
+void growth_section(const json& results, std::ostringstream& md) {
+  std::vector<double> elements, setup, first, per_shot, to_one_percent, memory;
+  std::ostringstream rows;
+  for (const json& c : results["cases"]) {
+    if (!c.value("growth", false) || c["curves"].empty() || c["curves"][0]["points"].empty()) continue;
+    const json& last = last_point(c["curves"][0]);
+    const double n = number(c["elements"]);
+    const bool reached = number(last["unshot_fraction"]) <= 0.01;
+    elements.push_back(n);
+    setup.push_back(number(c["setup_seconds"]));
+    first.push_back(number(c["first_picture_seconds"]));
+    per_shot.push_back(number(c["seconds_per_shot"]));
+    to_one_percent.push_back(reached ? number(last["seconds"]) : not_measured);
+    memory.push_back(number(c["peak_mib"]));
+    rows << "| " << c["elements"].get<std::size_t>() << " | " << format("%g", number(c["max_edge"])) << " | "
+         << format("%.3f", setup.back()) << " | " << format("%.3f", first.back()) << " | "
+         << format("%.2e", per_shot.back()) << " | "
+         << (reached ? format("%.2f", to_one_percent.back())
+                     : "not in " + format("%.0f", number(last["seconds"])) + " s (" +
+                           percent(number(last["unshot_fraction"])) + " left)")
+         << " | " << format("%.0f", memory.back()) << " |\n";
+  }
+  if (elements.empty()) return;
+  md << "\n## Growth with element count (Cornell box, raycast 16 rays, patches of 4x the element edge)\n\n"
+     << "| elements | edge | set-up s | first picture s | s per shot | to 1% unshot s | peak MiB |\n"
+     << "|---:|---:|---:|---:|---:|---:|---:|\n"
+     << rows.str() << "\nFitted exponents k of time ~ elements^k (least squares in log-log over the sizes "
+     << "measured): set-up " << format("%.2f", growth_exponent(elements, setup)) << ", first picture "
+     << format("%.2f", growth_exponent(elements, first)) << ", time per shot "
+     << format("%.2f", growth_exponent(elements, per_shot)) << ", time to 1% unshot "
+     << format("%.2f", growth_exponent(elements, to_one_percent)) << " (sizes that reached it), peak memory "
+     << format("%.2f", growth_exponent(elements, memory)) << ".\n";
+}
+
+void targets_section(const json& results, const std::map<std::string, scene_curves>& by_scene, std::ostringstream& md) {
+  const auto it = by_scene.find("cornell");
+  if (it == by_scene.end()) return;
+  md << "\n## Targets (Cornell box, picture RMSE after " << 4 << "x downsampling, light left out)\n\n";
+  for (double target : {0.05, 0.02}) {
+    double best = not_measured, path = not_measured;
+    std::string best_label;
+    for (const json* curve : it->second.curves) {
+      const double t = time_to_error(to_curve(*curve), target);
+      if ((*curve)["method"] == "path") {
+        path = t;
+      } else if (std::isfinite(t) && !(t >= best)) {
+        best = t;
+        best_label = (*curve)["label"].get<std::string>();
+      }
+    }
+    md << "- To " << percent(target) << ": best radiosity setting "
+       << (std::isfinite(best) ? format("%.3f s", best) + " (" + best_label + ")" : "not reached") << "; path tracer "
+       << (std::isfinite(path) ? format("%.2f s", path) : "not reached in its run");
+    if (std::isfinite(best) && std::isfinite(path)) md << "; ratio " << format("%.1fx", path / best);
+    md << ".\n";
+  }
+  // The lowest error any radiosity curve reached, and what the path tracer needs for it.
+  double lowest = 1e300, lowest_time = 0;
+  std::string lowest_label;
+  const json* path_curve = nullptr;
+  for (const json* curve : it->second.curves) {
+    if ((*curve)["method"] == "path") {
+      path_curve = curve;
+      continue;
+    }
+    for (const json& p : (*curve)["points"])
+      if (number(p["error"]) < lowest) {
+        lowest = number(p["error"]);
+        lowest_time = number(p["seconds"]);
+        lowest_label = (*curve)["label"].get<std::string>();
+      }
+  }
+  if (lowest < 1e300) {
+    md << "- Lowest radiosity error: " << percent(lowest) << " at " << format("%.3f s", lowest_time) << " ("
+       << lowest_label << ")";
+    if (path_curve) {
+      const double t = time_to_error(to_curve(*path_curve), lowest);
+      md << "; the path tracer reaches it in " << (std::isfinite(t) ? format("%.2f s", t) : "more than its run");
+      if (std::isfinite(t)) md << " (" << format("%.1fx", t / lowest_time) << ")";
+    }
+    md << ".\n";
+  }
+  // Time to the first useful picture (direct light everywhere) at about 10k elements.
+  const json* nearest = nullptr;
+  for (const json& c : results["cases"])
+    if (c.value("growth", false) && c["first_picture_seconds"].is_number() &&
+        (!nearest ||
+         std::abs(std::log(number(c["elements"]) / 1e4)) < std::abs(std::log(number((*nearest)["elements"]) / 1e4))))
+      nearest = &c;
+  if (nearest)
+    md << "- First useful picture (every emitter shot: direct light everywhere), from the loaded scene, at "
+       << (*nearest)["elements"].get<std::size_t>()
+       << " elements: " << format("%.3f s", number((*nearest)["first_picture_seconds"])) << " (meshing and set-up "
+       << format("%.3f s", number((*nearest)["setup_seconds"])) << ").\n";
+}
+
+}  // namespace
+
+std::string write_bench_report(const json& results, const std::string& out_dir) {
+  write_csv(results, out_dir);
+  const auto by_scene = curves_by_scene(results);
+  std::ostringstream md;
+  md << "# bounce bench: " << results["suite"].get<std::string>() << " suite\n\n"
+     << "Machine: " << results["machine"]["cpu"].get<std::string>() << ", "
+     << results["machine"]["threads"].get<unsigned>() << " threads. " << results["cases"].size() << " runs in "
+     << format("%.0f", number(results["seconds"])) << " s. Pictures " << results["picture_size"].get<int>() << "x"
+     << results["picture_size"].get<int>() << ", path-traced references at " << results["reference_spp"].get<int>()
+     << " spp. Times are from the loaded scene (meshing and set-up included, measuring excluded); "
+     << "'two-pass' adds the still's tracing time to the solver's. Error: relative RMSE (RMS difference / mean "
+        "of the reference) per vertex against the closed form where one exists, otherwise over the picture against "
+        "the path-traced reference, 4x4 blocks averaged, emitters left out.\n";
+  for (const auto& [scene, sc] : by_scene) {
+    const std::string error_name = error_name_of(sc);
+    const std::string svg = scene + ".svg";
+    write_svg(scene, sc, error_name, (fs::path(out_dir) / svg).string());
+    md << "\n## " << scene << "\n\n![" << scene << "](" << svg << ")\n\n"
+       << "| curve | elements | peak MiB | time s | error | max error | power error | to 10% s | to 5% s | to 2% s "
+          "| Pareto points |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    const auto fronts = front_of(sc);
+    for (std::size_t i = 0; i < sc.curves.size(); ++i) {
+      const json& c = *sc.cases[i];
+      const json& curve = *sc.curves[i];
+      if (curve["points"].empty()) continue;
+      const json& last = last_point(curve);
+      const bench_curve bc = to_curve(curve);
+      md << "| " << curve["label"].get<std::string>() << " | " << c["elements"].get<std::size_t>() << " | "
+         << format("%.0f", number(c["peak_mib"])) << " | " << format("%.3g", number(last["seconds"])) << " | "
+         << percent(number(last["error"])) << " | " << percent(number(last["max_error"])) << " | "
+         << percent(number(last["power_error"])) << " | " << format("%.3g", time_to_error(bc, 0.1)) << " | "
+         << format("%.3g", time_to_error(bc, 0.05)) << " | " << format("%.3g", time_to_error(bc, 0.02)) << " | "
+         << std::count(fronts[i].begin(), fronts[i].end(), true) << " |\n";
+    }
+    for (const json& c : results["cases"])
+      if (c["scene"] == scene && !c["error"].get<std::string>().empty())
+        md << "\nNot run: " << c["solver"].get<std::string>() << " " << c["method"].get<std::string>() << ", edge "
+           << format("%g", number(c["max_edge"])) << ": " << c["error"].get<std::string>() << "\n";
+  }
+  targets_section(results, by_scene, md);
+  growth_section(results, md);
+  std::ofstream(fs::path(out_dir) / "bench.md") << md.str();
+  return md.str();
+}
+
+}  // namespace bounce

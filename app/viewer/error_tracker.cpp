@@ -1,0 +1,133 @@
+#include "error_tracker.h"
+
+#include <cstdio>
+
+namespace bounce {
+
+struct error_tracker::job {
+  std::shared_ptr<const patch_mesh> mesh;
+  std::shared_ptr<const radiosity_snapshot> solution;
+  bool converged = false;
+  std::string setting;
+};
+
+error_tracker::error_tracker() : thread_([this] { run(); }) {}
+
+error_tracker::~error_tracker() {
+  {
+    const std::lock_guard lock(mutex_);
+    quit_ = true;
+    progress_.cancel = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void error_tracker::compute_reference(std::shared_ptr<const scene> source, const camera& view, int size, int spp) {
+  auto request = std::make_shared<scene>(*source);
+  request->view = view;
+  request->view.width = request->view.height = size;
+  {
+    const std::lock_guard lock(mutex_);
+    progress_.cancel = true;  // a reference still being traced is replaced
+    reference_request_ = std::move(request);
+    request_source_ = std::move(source);
+    request_spp_ = spp;
+  }
+  wake_.notify_all();
+}
+
+void error_tracker::observe(const worker_view& view, const std::string& setting) {
+  if (!view.solution || !view.mesh) return;
+  {
+    const std::lock_guard lock(mutex_);
+    const std::uint64_t version = view.solution->version;
+    if (view.mesh_version != mesh_version_ || version < last_version_) {
+      history_.clear();  // a new mesh or a restart: a new run
+      mesh_version_ = view.mesh_version;
+      last_version_ = 0;
+      queued_version_ = ~0ull;
+    }
+    if (version != last_version_) run_recorded_ = false;
+    last_version_ = version;
+    if (view.converged && !run_recorded_) {
+      runs_[setting] = {view.solution->stats.seconds, view.solution->stats.unshot_fraction, not_measured};
+      run_recorded_ = true;
+    }
+    // Each solution once; a new reference measures the current one again.
+    if (judge_ && view.source == reference_source_ && version != queued_version_) {
+      pending_ = std::make_shared<job>(job{view.mesh, view.solution, view.converged, setting});
+      queued_version_ = version;
+    }
+  }
+  wake_.notify_all();
+}
+
+error_status error_tracker::status(const std::string& setting) const {
+  const std::lock_guard lock(mutex_);
+  error_status s;
+  s.computing = computing_;
+  const long total = progress_.pixels_total;
+  s.progress = total > 0 ? std::min(1.0, double(progress_.pixels_done) / double(total)) : 0.0;
+  s.ready = judge_ != nullptr;
+  s.summary = summary_;
+  s.history = history_;
+  if (const auto it = runs_.find(setting); it != runs_.end()) s.last = it->second;
+  return s;
+}
+
+void error_tracker::run() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [this] { return quit_ || reference_request_ || (pending_ && judge_); });
+    if (quit_) return;
+    if (reference_request_) {
+      const std::shared_ptr<const scene> request = std::move(reference_request_);
+      const std::shared_ptr<const scene> source = std::move(request_source_);
+      const int spp = request_spp_;
+      computing_ = true;
+      progress_.cancel = false;
+      progress_.pixels_done = 0;
+      progress_.pixels_total = 0;
+      lock.unlock();
+      trace_params params;
+      params.method = integrator::path;
+      params.spp = spp;
+      trace_stats stats;
+      bench_truth truth;
+      truth.picture = trace_image(*request, ray_scene(*request), nullptr, params, &progress_, &stats);
+      truth.exclude_above = emitter_threshold(*request);
+      std::shared_ptr<const picture_judge> judge;
+      if (!stats.cancelled) judge = std::make_shared<picture_judge>(*request, truth);
+      lock.lock();
+      computing_ = false;
+      if (!judge) continue;
+      judge_ = judge;
+      judge_scene_ = request;
+      reference_source_ = source;
+      queued_version_ = ~0ull;
+      history_.clear();
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "reference: %dx%d path traced, %d spp, %.1f s; error = relative RMSE, 4x4 blocks",
+                    request->view.width, request->view.height, spp, stats.seconds);
+      summary_ = line;
+      continue;
+    }
+    const std::shared_ptr<const job> work = std::move(pending_);
+    const std::shared_ptr<const picture_judge> judge = judge_;
+    lock.unlock();
+    const std::vector<rgb> radiosity(work->solution->radiosity.begin(), work->solution->radiosity.end());
+    const double error = judge->judge_solution(*work->mesh, radiosity, {}, diffuse_source::radiosity).error;
+    lock.lock();
+    if (judge != judge_) continue;  // a new reference arrived meanwhile
+    if (!history_.empty() && history_.back().seconds > work->solution->stats.seconds) history_.clear();
+    history_.push_back({work->solution->stats.seconds, error});
+    if (work->converged) {
+      if (auto it = runs_.find(work->setting); it != runs_.end() && it->second.seconds == work->solution->stats.seconds)
+        it->second.error = error;
+    }
+  }
+}
+
+}  // namespace bounce
