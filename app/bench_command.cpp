@@ -124,6 +124,7 @@ suite_plan make_suite(const std::string& suite) {
   }
   // full
   add_progressive(plan, "cornell", {100, 60, 30}, {4, 16, 64}, {}, 25.0);
+  add_progressive(plan, "cornell", {40}, {4, 16}, {}, 25.0);  // 40 mm: the scene's default element size
   add_progressive(plan, "cornell", {60}, {}, {64, 128, 256}, 25.0);
   add_progressive(plan, "cornell", {30}, {}, {128}, 25.0);
   plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 16, 256, 60, 0.0, 1e-3, 25.0});
@@ -142,7 +143,8 @@ suite_plan make_suite(const std::string& suite) {
   add_reference(plan, "sphere", 0.5);
   add_progressive(plan, "squares-perpendicular", {0.1, 0.05}, {1, 16}, {64, 256}, 10.0);
   add_progressive(plan, "squares-parallel", {0.1, 0.05}, {16}, {256}, 10.0);
-  add_growth(plan, {70, 30, 15, 7.5}, 45.0);
+  plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 4, 256, 15, 4.0, 1e-3, 60.0});
+  add_growth(plan, {70, 30, 15, 7.5}, 90.0);
   plan.picture_size = 128;
   plan.reference_spp = 4096;
   return plan;
@@ -206,8 +208,17 @@ json point_json(const bench_point& p) {
           {"balance_error", number(p.balance_error)}};
 }
 
+// Resident memory of this process now, in MiB (0 if unknown).
+double resident_mib() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // "VmRSS:  1234 kB"
+  return 0.0;
+}
+
 // Runs case `index` in this process and writes its JSON.
 int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) {
+  const double start_mib = resident_mib();  // the program itself, before the run: subtracted from its peak
   const bench_case& c = plan.cases[std::size_t(index)];
   scene s;
   std::string error;
@@ -260,6 +271,7 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
             {"elements", r.elements},
             {"vertices", r.vertices},
             {"patches", r.patches},
+            {"start_mib", start_mib},
             {"setup_seconds", r.setup_seconds},
             {"first_picture_seconds", number(r.first_picture_seconds)},
             {"seconds_per_shot", number(r.seconds_per_shot)},
@@ -354,6 +366,8 @@ void add_bench_options(CLI::App& command, bench_options& options) {
       ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();
+  command.add_flag("--report-only", options.report_only,
+                   "write the CSV, plots and Markdown again from the folder's bench.json; run nothing");
   command.add_option("--run-case", options.run_case, "internal: run one case of the suite in this process")->group("");
 }
 
@@ -366,6 +380,17 @@ int run_bench_command(const bench_options& options) {
       return exit_usage;
     }
     return run_one_case(plan, options.run_case, options.out_dir);
+  }
+  if (options.report_only) {
+    const fs::path json_path = fs::path(options.out_dir) / "bench.json";
+    std::ifstream in(json_path);
+    const json results = json::parse(in, nullptr, false);
+    if (!in || results.is_discarded() || !results.contains("cases")) {
+      std::cerr << "error: " << json_path.string() << ": not a bench.json written by bounce bench\n";
+      return exit_input_error;
+    }
+    std::cout << write_bench_report(results, options.out_dir) << "\n";
+    return exit_ok;
   }
   std::error_code ec;
   fs::create_directories(fs::path(options.out_dir) / "cases", ec);
@@ -409,6 +434,7 @@ int run_bench_command(const bench_options& options) {
     j["wall_seconds"] = usage.wall_seconds;
     j["cpu_seconds"] = usage.cpu_seconds;
     j["peak_mib"] = usage.peak_mib;
+    j["run_mib"] = usage.peak_mib - j.value("start_mib", 0.0);  // what the run itself took
     std::printf(" %6.2f s, %6.1f MiB%s\n", usage.wall_seconds, usage.peak_mib,
                 j["error"].get<std::string>().empty() ? "" : ("  (" + j["error"].get<std::string>() + ")").c_str());
     results["cases"].push_back(j);

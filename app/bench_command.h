@@ -17,7 +17,8 @@ namespace bounce {
 struct bench_options {
   std::string suite = "quick";  // quick (under 2 minutes) | full (under 20)
   std::string out_dir = "bench-out";
-  int run_case = -1;  // internal: run this case of the suite in this process
+  bool report_only = false;  // rewrite the report from out_dir/bench.json, run nothing
+  int run_case = -1;         // internal: run this case of the suite in this process
 };
 
 void add_bench_options(CLI::App& command, bench_options& options);

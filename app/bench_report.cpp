@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
@@ -69,13 +70,16 @@ std::map<std::string, scene_curves> curves_by_scene(const json& results) {
   return out;
 }
 
-// Pareto flags per point, per curve of one scene.
-std::vector<std::vector<bool>> front_of(const scene_curves& sc) {
+// Pareto flags per point, per curve of one scene; with `radiosity_only`,
+// the front among the radiosity methods alone (what their defaults are
+// chosen from), the path tracer's points left out.
+std::vector<std::vector<bool>> front_of(const scene_curves& sc, bool radiosity_only = false) {
   std::vector<double> t, e;
   for (const json* curve : sc.curves)
     for (const json& p : (*curve)["points"]) {
+      const bool left_out = radiosity_only && (*curve)["method"] == "path";
       t.push_back(number(p["seconds"]));
-      e.push_back(number(p["error"]));
+      e.push_back(left_out ? not_measured : number(p["error"]));
     }
   const std::vector<bool> flags = pareto_front(t, e);
   std::vector<std::vector<bool>> out;
@@ -140,6 +144,7 @@ void write_svg(const std::string& scene, const scene_curves& sc, const std::stri
       e_hi = std::max(e_hi, std::max(e, floor));
     }
   std::ofstream out(path);
+  out << std::fixed << std::setprecision(1);  // coordinates to a tenth of a pixel: small files
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   out << "<text x=\"" << left << "\" y=\"24\" font-size=\"15\">" << scene << ": " << error_name
@@ -222,31 +227,33 @@ void growth_section(const json& results, std::ostringstream& md) {
     first.push_back(number(c["first_picture_seconds"]));
     per_shot.push_back(number(c["seconds_per_shot"]));
     to_one_percent.push_back(reached ? number(last["seconds"]) : not_measured);
-    memory.push_back(number(c["peak_mib"]));
+    memory.push_back(number(c["run_mib"]));
     rows << "| " << c["elements"].get<std::size_t>() << " | " << format("%g", number(c["max_edge"])) << " | "
          << format("%.3f", setup.back()) << " | " << format("%.3f", first.back()) << " | "
          << format("%.2e", per_shot.back()) << " | "
          << (reached ? format("%.2f", to_one_percent.back())
                      : "not in " + format("%.0f", number(last["seconds"])) + " s (" +
                            percent(number(last["unshot_fraction"])) + " left)")
-         << " | " << format("%.0f", memory.back()) << " |\n";
+         << " | " << format("%.0f", number(c["peak_mib"])) << " | " << format("%.1f", memory.back()) << " |\n";
   }
   if (elements.empty()) return;
   md << "\n## Growth with element count (Cornell box, raycast 16 rays, patches of 4x the element edge)\n\n"
-     << "| elements | edge | set-up s | first picture s | s per shot | to 1% unshot s | peak MiB |\n"
-     << "|---:|---:|---:|---:|---:|---:|---:|\n"
+     << "| elements | edge | set-up s | first picture s | s per shot | to 1% unshot s | peak MiB | run MiB |\n"
+     << "|---:|---:|---:|---:|---:|---:|---:|---:|\n"
      << rows.str() << "\nFitted exponents k of time ~ elements^k (least squares in log-log over the sizes "
      << "measured): set-up " << format("%.2f", growth_exponent(elements, setup)) << ", first picture "
      << format("%.2f", growth_exponent(elements, first)) << ", time per shot "
      << format("%.2f", growth_exponent(elements, per_shot)) << ", time to 1% unshot "
-     << format("%.2f", growth_exponent(elements, to_one_percent)) << " (sizes that reached it), peak memory "
-     << format("%.2f", growth_exponent(elements, memory)) << ".\n";
+     << format("%.2f", growth_exponent(elements, to_one_percent)) << " (sizes that reached it), memory of the run "
+     << format("%.2f", growth_exponent(elements, memory))
+     << ". Peak MiB is the process's peak resident memory; run MiB is that less the program's own at start.\n";
 }
 
 void targets_section(const json& results, const std::map<std::string, scene_curves>& by_scene, std::ostringstream& md) {
   const auto it = by_scene.find("cornell");
   if (it == by_scene.end()) return;
-  md << "\n## Targets (Cornell box, picture RMSE after " << 4 << "x downsampling, light left out)\n\n";
+  md << "\n## Targets (Cornell box, picture RMSE after 4x downsampling, light left out; path tracer at the "
+        "bench's picture size)\n\n";
   for (double target : {0.05, 0.02}) {
     double best = not_measured, path = not_measured;
     std::string best_label;
@@ -262,7 +269,8 @@ void targets_section(const json& results, const std::map<std::string, scene_curv
     md << "- To " << percent(target) << ": best radiosity setting "
        << (std::isfinite(best) ? format("%.3f s", best) + " (" + best_label + ")" : "not reached") << "; path tracer "
        << (std::isfinite(path) ? format("%.2f s", path) : "not reached in its run");
-    if (std::isfinite(best) && std::isfinite(path)) md << "; ratio " << format("%.1fx", path / best);
+    if (std::isfinite(best) && std::isfinite(path))
+      md << "; the path tracer's time / radiosity's: " << format("%.2g", path / best);
     md << ".\n";
   }
   // The lowest error any radiosity curve reached, and what the path tracer needs for it.
@@ -287,7 +295,7 @@ void targets_section(const json& results, const std::map<std::string, scene_curv
     if (path_curve) {
       const double t = time_to_error(to_curve(*path_curve), lowest);
       md << "; the path tracer reaches it in " << (std::isfinite(t) ? format("%.2f s", t) : "more than its run");
-      if (std::isfinite(t)) md << " (" << format("%.1fx", t / lowest_time) << ")";
+      if (std::isfinite(t)) md << " (its time / radiosity's: " << format("%.2g", t / lowest_time) << ")";
     }
     md << ".\n";
   }
@@ -319,15 +327,18 @@ std::string write_bench_report(const json& results, const std::string& out_dir) 
      << " spp. Times are from the loaded scene (meshing and set-up included, measuring excluded); "
      << "'two-pass' adds the still's tracing time to the solver's. Error: relative RMSE (RMS difference / mean "
         "of the reference) per vertex against the closed form where one exists, otherwise over the picture against "
-        "the path-traced reference, 4x4 blocks averaged, emitters left out.\n";
+        "the path-traced reference, 4x4 blocks averaged, emitters left out. 'Pareto points': the curve's points "
+        "that no other point of the scene beats on both time and error; 'of radiosity': the same among the "
+        "radiosity methods alone.\n";
   for (const auto& [scene, sc] : by_scene) {
     const std::string error_name = error_name_of(sc);
     const std::string svg = scene + ".svg";
     write_svg(scene, sc, error_name, (fs::path(out_dir) / svg).string());
     md << "\n## " << scene << "\n\n![" << scene << "](" << svg << ")\n\n"
        << "| curve | elements | peak MiB | time s | error | max error | power error | to 10% s | to 5% s | to 2% s "
-          "| Pareto points |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+          "| Pareto points | of radiosity |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     const auto fronts = front_of(sc);
+    const auto radiosity_fronts = front_of(sc, true);
     for (std::size_t i = 0; i < sc.curves.size(); ++i) {
       const json& c = *sc.cases[i];
       const json& curve = *sc.curves[i];
@@ -339,7 +350,8 @@ std::string write_bench_report(const json& results, const std::string& out_dir) 
          << percent(number(last["error"])) << " | " << percent(number(last["max_error"])) << " | "
          << percent(number(last["power_error"])) << " | " << format("%.3g", time_to_error(bc, 0.1)) << " | "
          << format("%.3g", time_to_error(bc, 0.05)) << " | " << format("%.3g", time_to_error(bc, 0.02)) << " | "
-         << std::count(fronts[i].begin(), fronts[i].end(), true) << " |\n";
+         << std::count(fronts[i].begin(), fronts[i].end(), true) << " | "
+         << std::count(radiosity_fronts[i].begin(), radiosity_fronts[i].end(), true) << " |\n";
     }
     for (const json& c : results["cases"])
       if (c["scene"] == scene && !c["error"].get<std::string>().empty())

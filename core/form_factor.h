@@ -38,7 +38,7 @@ struct form_factor_params {
   double subdivide_ratio = 1.0;
   int max_subdivision = 2;
   // hemicube (Cohen & Greenberg 1985): pixels along the top face's side
-  int hemicube_resolution = 256;
+  int hemicube_resolution = 128;
   std::uint64_t seed = 1;  // jitter of the shadow rays; F(v, e) depends on (seed, v, e) only
   bool parallel = true;    // TBB over receivers (raycast) or hemicube faces
 };
