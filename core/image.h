@@ -20,6 +20,17 @@ struct image {
   }
 };
 
+// A width x height picture of one value.
+inline image uniform_image(int width, int height, rgb value) {
+  image img;
+  img.width = width;
+  img.height = height;
+  img.pixels.reserve(std::size_t(width) * std::size_t(height) * 3);
+  for (int i = 0; i < width * height; ++i)
+    for (int c = 0; c < 3; ++c) img.pixels.push_back(float(value[c]));
+  return img;
+}
+
 // 8-bit RGB(A) rows, row 0 at the top, written as PNG. Returns false with
 // `error` naming the file.
 bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,

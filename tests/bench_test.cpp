@@ -15,15 +15,6 @@ namespace {
 
 using std::numbers::pi;
 
-image single_value(int w, int h, rgb value) {
-  image img;
-  img.width = w;
-  img.height = h;
-  for (int i = 0; i < w * h; ++i)
-    for (int c = 0; c < 3; ++c) img.pixels.push_back(float(value[c]));
-  return img;
-}
-
 scene bench_scene(const std::string& name) {
   scene s;
   load_report report;
@@ -41,21 +32,21 @@ patch_mesh mesh_of(const scene& s, double max_edge) {
 // ---- metrics ----
 
 TEST(ImageMetrics, KnownDifferencesGiveKnownErrors) {
-  const image a = single_value(8, 8, rgb(1.0));
+  const image a = uniform_image(8, 8, rgb(1.0));
   EXPECT_EQ(relative_rmse(a, a), 0.0);
   EXPECT_EQ(max_relative_error(a, a), 0.0);
-  const image b = single_value(8, 8, rgb(1.1));
+  const image b = uniform_image(8, 8, rgb(1.1));
   EXPECT_NEAR(relative_rmse(b, a), 0.1, 1e-6);
   EXPECT_NEAR(mean_relative_error(b, a), 0.1, 1e-6);
   image c = a;
   c.pixels[0] = 3.0f;  // one channel of one pixel off by 2
   EXPECT_NEAR(relative_rmse(c, a), std::sqrt(4.0 / 192.0), 1e-6);
   EXPECT_NEAR(max_relative_error(c, a), 2.0, 1e-6);
-  EXPECT_EQ(relative_rmse(a, single_value(4, 4, rgb(1.0))), INFINITY);  // sizes differ
+  EXPECT_EQ(relative_rmse(a, uniform_image(4, 4, rgb(1.0))), INFINITY);  // sizes differ
 }
 
 TEST(ImageMetrics, DownsampleAveragesAndExclusionSkipsPixels) {
-  image a = single_value(4, 4, rgb(1.0));
+  image a = uniform_image(4, 4, rgb(1.0));
   a.pixels[0] = 5.0f;
   const image d = downsample(a, 2);
   ASSERT_EQ(d.width, 2);
@@ -69,12 +60,12 @@ TEST(ImageMetrics, DownsampleAveragesAndExclusionSkipsPixels) {
   EXPECT_TRUE(std::isnan(masked.at(1, 1).r));
   EXPECT_FALSE(std::isnan(masked.at(2, 2).r));
   EXPECT_NEAR(mean_radiance(masked), 1.0, 1e-6);
-  EXPECT_EQ(relative_rmse(masked, single_value(4, 4, rgb(1.0))), 0.0);
+  EXPECT_EQ(relative_rmse(masked, uniform_image(4, 4, rgb(1.0))), 0.0);
   EXPECT_TRUE(std::isnan(downsample(masked, 2).at(0, 0).r));
 }
 
 TEST(ImageMetrics, ContrastEdgesFindAStep) {
-  image a = single_value(6, 1, rgb(1.0));
+  image a = uniform_image(6, 1, rgb(1.0));
   for (int x = 3; x < 6; ++x)
     for (int c = 0; c < 3; ++c) a.pixels[3 * x + c] = 2.0f;
   const std::vector<bool> edges = contrast_edges(a, 0.1);

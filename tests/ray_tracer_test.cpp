@@ -32,15 +32,6 @@ scene load(const std::string& relative) {
   return s;
 }
 
-image single_value(int w, int h, rgb value) {
-  image img;
-  img.width = w;
-  img.height = h;
-  for (int i = 0; i < w * h; ++i)
-    for (int c = 0; c < 3; ++c) img.pixels.push_back(float(value[c]));
-  return img;
-}
-
 // ---- textures ----
 
 TEST(Texture, CheckerAlternatesSquaresAndAveragesItsColours) {
@@ -349,7 +340,7 @@ image furnace_path(int size, int spp, std::uint64_t seed) {
 
 TEST(PathTracer, FurnaceConvergesToEOverOneMinusRho) {
   // Ke = 1, rho = 0.5: every pixel's radiance is 2.
-  const image exact = single_value(16, 16, rgb(2.0));
+  const image exact = uniform_image(16, 16, rgb(2.0));
   const double e16 = relative_rmse(furnace_path(16, 16, 1), exact);
   const double e64 = relative_rmse(furnace_path(16, 64, 1), exact);
   const double e256 = relative_rmse(furnace_path(16, 256, 1), exact);
