@@ -205,20 +205,24 @@ json point_json(const bench_point& p) {
           {"error", number(p.error)},
           {"max_error", number(p.max_error)},
           {"power_error", number(p.power_error)},
-          {"balance_error", number(p.balance_error)}};
+          {"balance_error", number(p.balance_error)},
+          {"residual", number(p.residual)}};
 }
 
-// Resident memory of this process now, in MiB (0 if unknown).
-double resident_mib() {
+// A memory figure of this process from /proc/self/status, in MiB (0 if
+// unknown): "VmRSS" resident now, "VmHWM" its peak. Read by the child
+// itself: the rusage a parent gets from wait4 starts from the parent's
+// own peak at the spawn, not from zero.
+double status_mib(const std::string& key) {
   std::ifstream in("/proc/self/status");
   for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // "VmRSS:  1234 kB"
+    if (line.rfind(key + ":", 0) == 0) return std::stod(line.substr(key.size() + 1)) / 1024.0;  // "VmRSS:  1234 kB"
   return 0.0;
 }
 
 // Runs case `index` in this process and writes its JSON.
 int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) {
-  const double start_mib = resident_mib();  // the program itself, before the run: subtracted from its peak
+  const double start_mib = status_mib("VmRSS");  // the program itself, before the run: subtracted from its peak
   const bench_case& c = plan.cases[std::size_t(index)];
   scene s;
   std::string error;
@@ -247,7 +251,14 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
     }
     truth.exclude_above = emitter_threshold(s);
   }
-  const bench_result r = run_bench(s, setting, truth);
+  bench_result r = run_bench(s, setting, truth);
+  // A point that should have been measured and was not (pictures of
+  // different sizes, every pixel left out) fails the run rather than
+  // vanishing from the plots.
+  if (setting.measure_error && r.error.empty())
+    for (const bench_curve& curve : r.curves)
+      for (const bench_point& p : curve.points)
+        if (!std::isfinite(p.error)) r.error = curve.method + ": an error that should be measured is not finite";
   json curves = json::array();
   for (const bench_curve& curve : r.curves) {
     json points = json::array();
@@ -272,6 +283,7 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
             {"vertices", r.vertices},
             {"patches", r.patches},
             {"start_mib", start_mib},
+            {"peak_mib", status_mib("VmHWM")},
             {"setup_seconds", r.setup_seconds},
             {"first_picture_seconds", number(r.first_picture_seconds)},
             {"seconds_per_shot", number(r.seconds_per_shot)},
@@ -339,8 +351,16 @@ bool prepare_references(const suite_plan& plan, const std::string& out_dir, json
       const image reference = path_reference(s, plan.reference_spp, 1);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::cout << " " << seconds << " s\n";
-      if (!write_pfm(path.string(), reference, error)) {
+      // Written aside and renamed: an interrupted run leaves no truncated cache.
+      const fs::path partial = path.string() + ".partial";
+      std::error_code ec;
+      if (!write_pfm(partial.string(), reference, error)) {
         std::cerr << "error: " << error << "\n";
+        return false;
+      }
+      fs::rename(partial, path, ec);
+      if (ec) {
+        std::cerr << "error: " << path.string() << ": " << ec.message() << "\n";
         return false;
       }
       note["cached"] = false;
@@ -428,14 +448,20 @@ int run_bench_command(const bench_options& options) {
            {"scene", c.scene},
            {"solver", solver_name(c.solver)},
            {"method", c.method},
+           {"max_edge", c.max_edge},
+           {"growth", c.growth},
+           {"elements", 0},
            {"error", "the run failed (exit status " + std::to_string(usage.status) + ")"},
            {"curves", json::array()}};
+    } else if (!j["error"].get<std::string>().empty() && c.solver != bench_solver::reference) {
+      ++failures;  // only the matrix solver may decline a run (a mesh too large for it)
     }
     j["wall_seconds"] = usage.wall_seconds;
     j["cpu_seconds"] = usage.cpu_seconds;
-    j["peak_mib"] = usage.peak_mib;
-    j["run_mib"] = usage.peak_mib - j.value("start_mib", 0.0);  // what the run itself took
-    std::printf(" %6.2f s, %6.1f MiB%s\n", usage.wall_seconds, usage.peak_mib,
+    // The child's own peak (VmHWM); wait4's figure only when the child could not say.
+    if (!j.contains("peak_mib")) j["peak_mib"] = usage.peak_mib;
+    j["run_mib"] = j["peak_mib"].get<double>() - j.value("start_mib", 0.0);  // what the run itself took
+    std::printf(" %6.2f s, %6.1f MiB%s\n", usage.wall_seconds, j["peak_mib"].get<double>(),
                 j["error"].get<std::string>().empty() ? "" : ("  (" + j["error"].get<std::string>() + ")").c_str());
     results["cases"].push_back(j);
   }

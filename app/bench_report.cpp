@@ -95,7 +95,7 @@ void write_csv(const json& results, const std::string& out_dir) {
   std::ofstream out(fs::path(out_dir) / "bench.csv");
   out << "scene,curve,method,solver,shadow_rays,hemicube_resolution,max_edge,patch_edge,elements,vertices,patches,"
          "run_wall_seconds,run_cpu_seconds,peak_mib,seconds,cpu_seconds,shots,rays,unshot_fraction,error,max_error,"
-         "power_error,balance_error,pareto\n";
+         "power_error,balance_error,residual,pareto\n";
   const auto by_scene = curves_by_scene(results);
   std::map<const json*, std::vector<bool>> fronts;
   for (const auto& [name, sc] : by_scene) {
@@ -119,8 +119,8 @@ void write_csv(const json& results, const std::string& out_dir) {
             << cell(c["cpu_seconds"]) << "," << cell(c["peak_mib"]) << "," << cell(p["seconds"]) << ","
             << cell(p["cpu_seconds"]) << "," << cell(p["shots"]) << "," << cell(p["rays"]) << ","
             << cell(p["unshot_fraction"]) << "," << cell(p["error"]) << "," << cell(p["max_error"]) << ","
-            << cell(p["power_error"]) << "," << cell(p["balance_error"]) << ","
-            << (i < flags.size() && flags[i] ? 1 : 0) << "\n";
+            << cell(p["power_error"]) << "," << cell(p["balance_error"]) << "," << cell(p.value("residual", json()))
+            << "," << (i < flags.size() && flags[i] ? 1 : 0) << "\n";
         ++i;
       }
     }
@@ -355,8 +355,8 @@ std::string write_bench_report(const json& results, const std::string& out_dir) 
     }
     for (const json& c : results["cases"])
       if (c["scene"] == scene && !c["error"].get<std::string>().empty())
-        md << "\nNot run: " << c["solver"].get<std::string>() << " " << c["method"].get<std::string>() << ", edge "
-           << format("%g", number(c["max_edge"])) << ": " << c["error"].get<std::string>() << "\n";
+        md << "\nNot run: " << c.value("solver", "") << " " << c.value("method", "") << ", edge "
+           << format("%g", number(c.value("max_edge", json()))) << ": " << c["error"].get<std::string>() << "\n";
   }
   targets_section(results, by_scene, md);
   growth_section(results, md);

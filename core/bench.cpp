@@ -180,7 +180,7 @@ bench_result run_reference(const scene& s, const bench_setting& setting, const b
     p.seconds = result.setup_seconds + solve_seconds;
     p.cpu_seconds = not_measured;  // one process runs both; the run's CPU total is reported
     p.rays = solution.rays;
-    p.balance_error = residual;
+    p.residual = residual;
     if (vertices) vertices->judge(mesh, radiosity, p);
     if (pictures) {
       const auto v = pictures->judge_solution(mesh, radiosity, {}, diffuse_source::radiosity);
@@ -205,6 +205,7 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
   run_clock clock;
   picture_judge pictures(s, truth);
   result.setup_seconds = clock.wall();  // the ray-tracing BVH
+  const double setup_cpu = clock.cpu();
   result.curves.push_back({"path", {}});
   double spent = 0.0;
   for (int spp = 1; spp <= setting.path_max_spp && spent < setting.max_seconds; spp *= 2) {
@@ -216,7 +217,7 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
     const double c0 = cpu_now();
     const image picture = trace_image(s, pictures.rays(), nullptr, params, nullptr, &stats);
     bench_point p;
-    p.cpu_seconds = cpu_now() - c0;
+    p.cpu_seconds = setup_cpu + cpu_now() - c0;  // each picture is its own run: set-up plus its trace
     p.seconds = result.setup_seconds + stats.seconds;
     p.rays = stats.primary_rays + stats.shadow_rays + stats.secondary_rays;
     const auto v = pictures.judge(picture);
@@ -403,6 +404,7 @@ rgb reflected_power(const patch_mesh& mesh, std::span<const rgb> radiosity) {
 }
 
 vertex_error vertex_relative_error(std::span<const rgb> test, std::span<const rgb> exact) {
+  if (test.size() != exact.size()) return {not_measured, not_measured};
   double largest = 0.0, sum = 0.0;
   for (const rgb& c : exact) {
     largest = std::max({largest, std::abs(c.r), std::abs(c.g), std::abs(c.b)});
@@ -418,7 +420,8 @@ vertex_error vertex_relative_error(std::span<const rgb> test, std::span<const rg
       squares += d * d;
       e.max = std::max(e.max, std::abs(d) / std::max(std::abs(exact[v][c]), floor));
     }
-  e.rmse = mean > 0.0 ? std::sqrt(squares / (3.0 * double(std::max<std::size_t>(test.size(), 1)))) / mean : 0.0;
+  if (!(mean > 0.0)) return {not_measured, not_measured};
+  e.rmse = std::sqrt(squares / (3.0 * double(test.size()))) / mean;
   return e;
 }
 

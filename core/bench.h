@@ -67,7 +67,8 @@ struct bench_point {
   double error = not_measured;          // relative RMSE: per vertex (closed form) or over the picture
   double max_error = not_measured;      // largest relative error, same samples
   double power_error = not_measured;    // reflected power against the closed form, relative
-  double balance_error = not_measured;  // |emitted + received - shot - unshot| / (emitted + received)
+  double balance_error = not_measured;  // progressive: |emitted + received - shot - unshot| / (emitted + received)
+  double residual = not_measured;       // matrix solvers: max |(I - R K) B - b| / max |b|
 };
 
 // One curve of the plot: a method/setting and its error over time.
@@ -134,6 +135,8 @@ struct vertex_error {
   double rmse = 0.0;  // RMS difference over vertices and channels / mean of the exact values
   double max = 0.0;   // largest |difference| / exact, exact values below 1e-6 of the largest counted as that
 };
+// NaN for both when the sizes differ or the exact values are all zero:
+// nothing to be relative to.
 vertex_error vertex_relative_error(std::span<const rgb> test, std::span<const rgb> exact);
 
 // A point (seconds, error) is on the Pareto front when no other point is

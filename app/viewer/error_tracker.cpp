@@ -5,6 +5,7 @@
 namespace bounce {
 
 struct error_tracker::job {
+  std::uint64_t run = 0;
   std::shared_ptr<const patch_mesh> mesh;
   std::shared_ptr<const radiosity_snapshot> solution;
   bool converged = false;
@@ -44,6 +45,8 @@ void error_tracker::observe(const worker_view& view, const std::string& setting)
     const std::uint64_t version = view.solution->version;
     if (view.mesh_version != mesh_version_ || version < last_version_) {
       history_.clear();  // a new mesh or a restart: a new run
+      pending_.reset();
+      ++run_;
       mesh_version_ = view.mesh_version;
       last_version_ = 0;
       queued_version_ = ~0ull;
@@ -55,9 +58,12 @@ void error_tracker::observe(const worker_view& view, const std::string& setting)
       run_recorded_ = true;
     }
     // Each solution once; a new reference measures the current one again.
-    if (judge_ && view.source == reference_source_ && version != queued_version_) {
-      pending_ = std::make_shared<job>(job{view.mesh, view.solution, view.converged, setting});
+    // (again when the same solution turns out to be the converged one).
+    if (judge_ && view.source == reference_source_ &&
+        (version != queued_version_ || (view.converged && !queued_converged_))) {
+      pending_ = std::make_shared<job>(job{run_, view.mesh, view.solution, view.converged, setting});
       queued_version_ = version;
+      queued_converged_ = view.converged;
     }
   }
   wake_.notify_all();
@@ -120,9 +126,9 @@ void error_tracker::run() {
     const std::vector<rgb> radiosity(work->solution->radiosity.begin(), work->solution->radiosity.end());
     const double error = judge->judge_solution(*work->mesh, radiosity, {}, diffuse_source::radiosity).error;
     lock.lock();
-    if (judge != judge_) continue;  // a new reference arrived meanwhile
-    if (!history_.empty() && history_.back().seconds > work->solution->stats.seconds) history_.clear();
-    history_.push_back({work->solution->stats.seconds, error});
+    if (judge != judge_ || work->run != run_) continue;  // a new reference or a new run arrived meanwhile
+    if (history_.empty() || history_.back().seconds != work->solution->stats.seconds)
+      history_.push_back({work->solution->stats.seconds, error});
     if (work->converged) {
       if (auto it = runs_.find(work->setting); it != runs_.end() && it->second.seconds == work->solution->stats.seconds)
         it->second.error = error;

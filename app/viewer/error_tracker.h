@@ -65,7 +65,6 @@ class error_tracker {
   struct job;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
-  std::thread thread_;
   bool quit_ = false;
   trace_progress progress_;
 
@@ -84,6 +83,10 @@ class error_tracker {
   std::uint64_t queued_version_ = ~0ull;  // the solution last queued for measuring
   std::map<std::string, last_run> runs_;
   bool run_recorded_ = false;
+  bool queued_converged_ = false;  // whether the queued solution was queued as converged
+  std::uint64_t run_ = 0;          // counts restarts and new meshes: a measurement of an older run is dropped
+
+  std::thread thread_;  // last: it starts in the constructor and reads every member above
 };
 
 }  // namespace bounce
