@@ -62,7 +62,8 @@ struct bench_case {
   double patch_factor = 4.0;  // patch edge = this x max edge; 0: elements shoot
   double until = 1e-3;
   double max_seconds = 10.0;
-  bool growth = false;  // timings and memory only, for the growth with element count
+  bool growth = false;     // timings and memory only, for the growth with element count
+  double tolerance = 0.0;  // > 0: adaptive meshing with this tolerance (progressive)
 };
 
 struct suite_plan {
@@ -81,6 +82,18 @@ void add_progressive(suite_plan& plan, const std::string& scene, std::initialize
     for (int h : hemicubes)
       plan.cases.push_back({scene, bench_solver::progressive, "hemicube", 16, h, edge, 4.0, until, max_seconds});
   }
+}
+
+// Adaptive meshing on the Cornell box from coarse starting meshes, 16 rays,
+// elements shooting (the --adaptive default: shooters refine with them).
+void add_adaptive(suite_plan& plan, std::initializer_list<double> edges, std::initializer_list<double> tolerances,
+                  double max_seconds, double patch_factor = 0.0) {
+  for (double edge : edges)
+    for (double tolerance : tolerances) {
+      bench_case c{"cornell", bench_solver::progressive, "raycast", 16, 256, edge, patch_factor, 1e-3, max_seconds};
+      c.tolerance = tolerance;
+      plan.cases.push_back(c);
+    }
 }
 
 void add_reference(suite_plan& plan, const std::string& scene, double edge) {
@@ -118,11 +131,23 @@ suite_plan make_suite(const std::string& suite) {
     add_progressive(plan, "squares-perpendicular", {0.1}, {16}, {64}, 2.0);
     add_progressive(plan, "squares-parallel", {0.1}, {16}, {}, 2.0);
     add_growth(plan, {150, 100}, 5.0);
+    add_adaptive(plan, {150}, {0.5}, 3.0);
     plan.picture_size = 64;
     plan.reference_spp = 1024;
     return plan;
   }
+  if (suite == "adaptive") {
+    // Adaptive against uniform meshes on the Cornell box, 16 rays: the
+    // full suite's Cornell picture and reference.
+    add_progressive(plan, "cornell", {100, 60, 40, 30}, {16}, {}, 25.0);
+    plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 16, 256, 15, 4.0, 1e-3, 60.0});
+    add_adaptive(plan, {100, 60}, {0.5, 1.0}, 25.0);
+    plan.picture_size = 128;
+    plan.reference_spp = 4096;
+    return plan;
+  }
   // full
+  add_adaptive(plan, {100, 60}, {0.5}, 25.0);
   add_progressive(plan, "cornell", {100, 60, 30}, {4, 16, 64}, {}, 25.0);
   add_progressive(plan, "cornell", {40}, {4, 16}, {}, 25.0);  // 40 mm: the scene's default element size
   add_progressive(plan, "cornell", {60}, {}, {64, 128, 256}, 25.0);
@@ -170,8 +195,10 @@ std::string curve_label(const bench_case& c, const std::string& curve_method) {
   if (c.solver == bench_solver::progressive)
     setting =
         c.method == "hemicube" ? " " + std::to_string(c.hemicube_resolution) : " " + std::to_string(c.shadow_rays);
-  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s", setting.c_str(), c.max_edge,
-                c.solver == bench_solver::progressive && c.patch_factor == 0.0 ? ", element shooters" : "",
+  char adaptive[48] = "";
+  if (c.tolerance > 0.0) std::snprintf(adaptive, sizeof adaptive, ", adaptive %g", c.tolerance);
+  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s%s", setting.c_str(), c.max_edge,
+                c.solver == bench_solver::progressive && c.patch_factor == 0.0 ? ", element shooters" : "", adaptive,
                 c.growth ? ", growth" : "");
   std::string base = curve_method;
   const std::size_t plus = base.find(" + ");
@@ -206,7 +233,8 @@ json point_json(const bench_point& p) {
           {"max_error", number(p.max_error)},
           {"power_error", number(p.power_error)},
           {"balance_error", number(p.balance_error)},
-          {"residual", number(p.residual)}};
+          {"residual", number(p.residual)},
+          {"elements", p.elements}};
 }
 
 // A memory figure of this process from /proc/self/status, in MiB (0 if
@@ -240,6 +268,11 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
   setting.until = c.until;
   setting.max_seconds = c.max_seconds;
   setting.measure_error = !c.growth;
+  if (c.tolerance > 0.0) {
+    setting.adaptive.enabled = true;
+    setting.adaptive.tolerance = c.tolerance;
+    setting.mesher.a_priori_min_edge = default_min_edge(c.max_edge);
+  }
 
   bench_truth truth;
   truth.exact = find_scene(c.scene).exact;
@@ -278,6 +311,7 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
             {"hemicube_resolution", c.hemicube_resolution},
             {"max_edge", c.max_edge},
             {"patch_edge", c.patch_factor * c.max_edge},
+            {"adaptive_tolerance", c.tolerance},
             {"growth", c.growth},
             {"elements", r.elements},
             {"vertices", r.vertices},
@@ -381,8 +415,11 @@ std::string cpu_model() {
 }  // namespace
 
 void add_bench_options(CLI::App& command, bench_options& options) {
-  command.add_option("--suite", options.suite, "quick: every method once, under 2 minutes; full: under 20")
-      ->check(CLI::IsMember({"quick", "full"}))
+  command
+      .add_option("--suite", options.suite,
+                  "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
+                  "(Cornell box)")
+      ->check(CLI::IsMember({"quick", "full", "adaptive"}))
       ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();

@@ -249,6 +249,55 @@ void growth_section(const json& results, std::ostringstream& md) {
      << ". Peak MiB is the process's peak resident memory; run MiB is that less the program's own at start.\n";
 }
 
+// Adaptive against uniform meshes (radiosity alone, not two-pass): the
+// lowest error a uniform mesh reached, and the first point of an adaptive
+// curve at or below it, with its element count and time.
+void adaptive_line(const scene_curves& curves, std::ostringstream& md) {
+  auto has = [](const json& curve, const char* part) {
+    return curve["label"].get<std::string>().find(part) != std::string::npos;
+  };
+  double uniform = 1e300, uniform_time = 0.0;
+  std::size_t uniform_elements = 0;
+  std::string uniform_label;
+  for (const json* curve : curves.curves) {
+    const std::string method = (*curve)["method"].get<std::string>();
+    if ((method != "raycast" && method != "hemicube") || has(*curve, "adaptive")) continue;
+    for (const json& p : (*curve)["points"])
+      if (number(p["error"]) < uniform) {
+        uniform = number(p["error"]);
+        uniform_time = number(p["seconds"]);
+        uniform_elements = p.value("elements", std::size_t(0));
+        uniform_label = (*curve)["label"].get<std::string>();
+      }
+  }
+  if (!(uniform < 1e300)) return;
+  const json* best = nullptr;
+  const json* best_curve = nullptr;
+  for (const json* curve : curves.curves) {
+    if (!has(*curve, "adaptive") || has(*curve, " + two-pass")) continue;
+    for (const json& p : (*curve)["points"])
+      if (number(p["error"]) <= uniform) {
+        if (!best || number(p["seconds"]) < number((*best)["seconds"])) {
+          best = &p;
+          best_curve = curve;
+        }
+        break;
+      }
+  }
+  md << "- Adaptive meshing against the best uniform mesh (radiosity alone): the uniform meshes' lowest error is "
+     << percent(uniform) << " (" << uniform_label << ", " << uniform_elements << " elements, "
+     << format("%.3f s", uniform_time) << "); ";
+  if (!best) {
+    md << "no adaptive run reached it.\n";
+    return;
+  }
+  const std::size_t elements = (*best).value("elements", std::size_t(0));
+  md << "adaptive meshing reaches it in " << format("%.3f s", number((*best)["seconds"])) << " with " << elements
+     << " elements (" << (*best_curve)["label"].get<std::string>()
+     << "): " << format("%.2g", elements ? double(uniform_elements) / double(elements) : 0.0) << "x fewer elements, "
+     << format("%.2g", uniform_time / number((*best)["seconds"])) << "x less time.\n";
+}
+
 void targets_section(const json& results, const std::map<std::string, scene_curves>& by_scene, std::ostringstream& md) {
   const auto it = by_scene.find("cornell");
   if (it == by_scene.end()) return;
@@ -299,6 +348,7 @@ void targets_section(const json& results, const std::map<std::string, scene_curv
     }
     md << ".\n";
   }
+  adaptive_line(it->second, md);
   // Time to the first useful picture (direct light everywhere) at about 10k elements.
   const json* nearest = nullptr;
   for (const json& c : results["cases"])

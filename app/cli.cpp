@@ -228,6 +228,14 @@ void add_solver_options(CLI::App& command, solver_options& o) {
       ->check(CLI::Range(8, 4096))
       ->capture_default_str();
   command.add_option("--stats", o.stats_path, "write solver statistics as JSON to this file");
+  command.add_flag("--adaptive", o.adaptive,
+                   "adaptive meshing: refine at contacts and near emitters, then where the radiosity changes "
+                   "and along shadow edges while solving");
+  command.add_option("--tolerance", o.tolerance, "adaptive: split where vertex radiosities differ by this fraction")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--min-edge", o.min_edge, "adaptive: shortest edge a split may make (default: max edge / 8)")
+      ->check(CLI::PositiveNumber);
 }
 
 void add_camera_options(CLI::App& command, camera_options& o) {

@@ -26,6 +26,9 @@ struct solver_options {
   int hemicube_resolution =
       128;                 // hemicube: pixels along the top face (README "Speed against error": 256 bought nothing)
   std::string stats_path;  // --stats FILE.json
+  bool adaptive = false;   // adaptive meshing (a priori and a posteriori)
+  double tolerance = 0.5;  // adaptive: relative radiosity difference that splits an element
+  double min_edge = 0.0;   // adaptive: shortest edge a split may make; 0 = max edge / 8
 };
 
 // Camera overrides of every command that renders, as typed.

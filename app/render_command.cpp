@@ -75,7 +75,8 @@ int run_render(const scene& s, const solver_options& solver, const render_option
     overlay = [&] {
       worker_view v;
       v.source = std::shared_ptr<const scene>(&s, [](const scene*) {});
-      v.mesh = std::shared_ptr<const patch_mesh>(&mesh, [](const patch_mesh*) {});
+      v.mesh = state->refined_mesh ? state->refined_mesh
+                                   : std::shared_ptr<const patch_mesh>(&mesh, [](const patch_mesh*) {});
       v.solution = make_snapshot(*state);
       v.history = history;
       v.converged = true;
@@ -129,7 +130,7 @@ int run_render(const scene& s, const solver_options& solver, const render_option
   if (!write_frame(options.png_path)) return exit_input_error;
   std::printf("solved: %llu shots, unshot %.4f%%, %zu elements, %.3f s\n",
               static_cast<unsigned long long>(state->stats.shots), 100.0 * state->stats.unshot_fraction,
-              mesh.element_count(), state->stats.seconds);
+              state->mesh->element_count(), state->stats.seconds);
   std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(options.png_path).string().c_str(), s.view.width,
               s.view.height);
   if (!options.pfm_path.empty()) {

@@ -31,13 +31,19 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   const auto mesh_start = clock_type::now();
   patch_mesh mesh;
   std::string error;
-  if (!make_patch_mesh(s, to_mesher_params(solver, s), mesh, error)) {
+  refinement_pass a_priori;
+  mesher_params mesher = to_mesher_params(solver, s);
+  mesher.a_priori_report = &a_priori;
+  if (!make_patch_mesh(s, mesher, mesh, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
     return exit_input_error;
   }
   const double mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
   std::printf("mesh: %zu elements, %zu vertices, %zu shooting patches (max edge %g) in %.3f s\n", mesh.element_count(),
               mesh.vertex_count(), mesh.patch_count(), mesh.max_edge, mesh_seconds);
+  if (solver.adaptive)
+    std::printf("a priori refinement: %zu marks at contacts, %zu near emitters; %zu -> %zu elements\n",
+                a_priori.contact, a_priori.emitter, a_priori.elements_before, a_priori.elements_after);
   if (mesh.nonmanifold_faces)
     std::fprintf(stderr, "warning: %zu non-manifold face(s) kept with vertices of their own\n", mesh.nonmanifold_faces);
 
@@ -62,7 +68,28 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   const radiosity_stats& st = state->stats;
   const power_balance& pb = state->balance;
   const double imbalance =
-      channel_sum(pb.emitted + pb.received - pb.shot - pb.unshot) / channel_sum(pb.emitted + pb.received);
+      channel_sum(pb.emitted + pb.received + pb.refined - pb.shot - pb.unshot) / channel_sum(pb.emitted + pb.received);
+  const patch_mesh& solved = *state->mesh;  // refined, with --adaptive
+  nlohmann::json passes = nlohmann::json::array();
+  for (const refinement_pass& pass : state->adaptive.history) {
+    std::printf(
+        "refinement at unshot %.3f%%: %zu marked by radiosity difference, %zu on shadow edges; %zu -> %zu elements "
+        "(+%zu vertices) in %.3f s\n",
+        100.0 * pass.unshot_fraction, pass.gradient, pass.shadow, pass.elements_before, pass.elements_after,
+        pass.new_vertices, pass.seconds);
+    passes.push_back({{"unshot_fraction", pass.unshot_fraction},
+                      {"gradient_marks", pass.gradient},
+                      {"shadow_marks", pass.shadow},
+                      {"elements_before", pass.elements_before},
+                      {"elements_after", pass.elements_after},
+                      {"new_vertices", pass.new_vertices},
+                      {"seconds", pass.seconds}});
+  }
+  if (!state->adaptive.error.empty())
+    std::fprintf(stderr, "warning: refinement stopped: %s\n", state->adaptive.error.c_str());
+  if (solver.adaptive)
+    std::printf("adaptive mesh: %zu elements, %zu vertices (%zu elements before refinement while solving)\n",
+                solved.element_count(), solved.vertex_count(), mesh.element_count());
   std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
               static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
               static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
@@ -71,10 +98,12 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   nlohmann::json stats = {
       {"scene", s.source},
       {"method", solver.method},
-      {"max_edge", mesh.max_edge},
-      {"elements", mesh.element_count()},
-      {"vertices", mesh.vertex_count()},
-      {"patches", mesh.patch_count()},
+      {"max_edge", solved.max_edge},
+      {"elements", solved.element_count()},
+      {"vertices", solved.vertex_count()},
+      {"patches", solved.patch_count()},
+      {"adaptive", solver.adaptive},
+      {"refinement_passes", passes},
       {"patch_edge", to_mesher_params(solver, s).patch_edge},
       {"mesh_seconds", mesh_seconds},
       {"shots", st.shots},
@@ -85,14 +114,15 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
        {{"emitted", to_json(pb.emitted)},
         {"received", to_json(pb.received)},
         {"shot", to_json(pb.shot)},
-        {"unshot", to_json(pb.unshot)}}},
+        {"unshot", to_json(pb.unshot)},
+        {"refined", to_json(pb.refined)}}},
   };
 
   if (extra.reference) {
     reference_params rp;
     rp.form_factors = to_radiosity_params(solver).form_factors;
     reference_solution ref;
-    if (!solve_reference(s, mesh, rp, ref, error)) {
+    if (!solve_reference(s, solved, rp, ref, error)) {
       std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
       return exit_input_error;
     }
@@ -146,7 +176,7 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
     }
   }
   if (!extra.ply_path.empty()) {
-    if (!write_ply(extra.ply_path, mesh, state->radiosity, error)) {
+    if (!write_ply(extra.ply_path, solved, state->radiosity, error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }

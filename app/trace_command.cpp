@@ -97,10 +97,10 @@ int run_trace(const scene& s, const solver_options& solver, const trace_options&
   std::unique_ptr<radiosity_field> field;
   if (params.method == integrator::whitted && !options.no_radiosity) {
     if (!solve(s, solver, pass)) return exit_input_error;
-    std::printf("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.mesh.element_count(),
+    std::printf("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.state->mesh->element_count(),
                 static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
                 pass.state->stats.seconds);
-    field = std::make_unique<radiosity_field>(pass.mesh, pass.state->radiosity, pass.state->direct);
+    field = std::make_unique<radiosity_field>(*pass.state->mesh, pass.state->radiosity, pass.state->direct);
   } else if (params.method == integrator::whitted) {
     params.diffuse = diffuse_source::ambient;
     if (options.ambient) {

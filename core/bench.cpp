@@ -54,13 +54,20 @@ class run_clock {
 
 // Compares per-vertex solutions with the closed form.
 struct vertex_judge {
+  const scene& s;
+  exact_kind kind;
   std::vector<rgb> exact;
   double exact_power = 0.0;
+  const patch_mesh* exact_for = nullptr;  // adaptive meshing changes the mesh: the exact values follow
 
-  vertex_judge(const scene& s, const patch_mesh& mesh, exact_kind kind)
-      : exact(exact_vertex_radiosity(kind, s, mesh)), exact_power(channel_sum(exact_reflected_power(kind, s, mesh))) {}
+  vertex_judge(const scene& source, exact_kind k) : s(source), kind(k) {}
 
-  void judge(const patch_mesh& mesh, std::span<const rgb> radiosity, bench_point& p) const {
+  void judge(const patch_mesh& mesh, std::span<const rgb> radiosity, bench_point& p) {
+    if (exact_for != &mesh) {
+      exact = exact_vertex_radiosity(kind, s, mesh);
+      exact_power = channel_sum(exact_reflected_power(kind, s, mesh));
+      exact_for = &mesh;
+    }
     const vertex_error e = vertex_relative_error(radiosity, exact);
     p.error = e.rmse;
     p.max_error = e.max;
@@ -70,7 +77,7 @@ struct vertex_judge {
 
 double balance_error(const power_balance& b) {
   const double in = channel_sum(b.emitted + b.received);
-  return in > 0.0 ? std::abs(channel_sum(b.emitted + b.received - b.shot - b.unshot)) / in : 0.0;
+  return in > 0.0 ? std::abs(channel_sum(b.emitted + b.received + b.refined - b.shot - b.unshot)) / in : 0.0;
 }
 
 bool all_emission_shot(const radiosity_state& state) {
@@ -88,7 +95,7 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
   run_clock clock;
   patch_mesh mesh;
   if (!make_patch_mesh(s, setting.mesher, mesh, result.error)) return result;
-  auto state = make_radiosity_state(s, mesh, radiosity_params{setting.form_factors});
+  auto state = make_radiosity_state(s, mesh, radiosity_params{setting.form_factors, setting.adaptive});
   result.setup_seconds = clock.wall();
   result.elements = mesh.element_count();
   result.vertices = mesh.vertex_count();
@@ -101,7 +108,7 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
       if (truth.exact == exact_kind::none)
         pictures = std::make_unique<picture_judge>(s, truth);
       else
-        vertices = std::make_unique<vertex_judge>(s, mesh, truth.exact);
+        vertices = std::make_unique<vertex_judge>(s, truth.exact);
     });
   }
   result.curves.push_back({method_name(setting.form_factors), {}});
@@ -115,7 +122,9 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
     p.rays = state->stats.rays;
     p.unshot_fraction = state->stats.unshot_fraction;
     p.balance_error = balance_error(state->balance);
+    p.elements = state->mesh->element_count();
     clock.exclude([&] {
+      const patch_mesh& mesh = *state->mesh;  // refined, with adaptive meshing
       if (vertices) vertices->judge(mesh, state->radiosity, p);
       if (!pictures) return;
       bench_point two_pass = p;
@@ -149,6 +158,8 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
     if (done) break;
   }
   if (state->stats.shots > 0) result.seconds_per_shot = state->stats.seconds / double(state->stats.shots);
+  result.elements = state->mesh->element_count();  // adaptive: the refined mesh's
+  result.vertices = state->mesh->vertex_count();
   return result;
 }
 
@@ -173,7 +184,7 @@ bench_result run_reference(const scene& s, const bench_setting& setting, const b
     if (truth.exact == exact_kind::none)
       pictures = std::make_unique<picture_judge>(s, truth);
     else
-      vertices = std::make_unique<vertex_judge>(s, mesh, truth.exact);
+      vertices = std::make_unique<vertex_judge>(s, truth.exact);
   }
   auto point = [&](const std::vector<rgb>& radiosity, double solve_seconds, double residual) {
     bench_point p;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive.h"
 #include "form_factor.h"
 #include "image.h"
 #include "patch_mesh.h"
@@ -35,6 +36,7 @@ struct bench_setting {
   double max_seconds = 10.0;  // ... or after this long (progressive, path)
   bool measure_error = true;  // false: timings only (the growth runs)
   int path_max_spp = 1 << 14;
+  adaptive_params adaptive;  // progressive: adaptive meshing while solving
 };
 
 // The closed forms of accuracy.md that a scene's solution is compared with.
@@ -69,6 +71,7 @@ struct bench_point {
   double power_error = not_measured;    // reflected power against the closed form, relative
   double balance_error = not_measured;  // progressive: |emitted + received - shot - unshot| / (emitted + received)
   double residual = not_measured;       // matrix solvers: max |(I - R K) B - b| / max |b|
+  std::size_t elements = 0;             // elements of the mesh at this point (adaptive meshing grows it)
 };
 
 // One curve of the plot: a method/setting and its error over time.

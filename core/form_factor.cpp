@@ -127,7 +127,12 @@ struct raycast_query {
   }
 };
 
-std::uint64_t raycast_form_factors(const form_factor_context& context, const shooter& from, std::span<double> out) {
+// Ray-cast F(v, from) for the receivers (all vertices when empty), with
+// each one's visibility class when `visibility` is not empty. out and
+// visibility are indexed like the receivers.
+std::uint64_t raycast_form_factors(const form_factor_context& context, const shooter& from,
+                                   std::span<const int> receivers, std::span<double> out,
+                                   std::span<std::uint8_t> visibility) {
   const patch_mesh& mesh = *context.mesh;
   const vec3 a = from.corners[0], b = from.corners[1], c = from.corners[2];
   const vec3 centroid = (a + b + c) / 3.0;
@@ -142,22 +147,32 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, const sho
   // the shooter's own vertices and its flat neighbours, which round-off
   // would otherwise put a hair in front with a large, wrong form factor.
   const double in_plane = 1e-9 * mesh.scene_diagonal;
+  const vec3 triangle[3] = {a, b, c};
   auto receive = [&](std::size_t begin, std::size_t end) {
     std::uint64_t rays = 0;
-    for (std::size_t v = begin; v < end; ++v) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t v = receivers.empty() ? i : std::size_t(receivers[i]);
       const vec3& p = mesh.receive_points[v];
       // The shooter emits from its front only; a receiver behind (or in)
       // its plane gets nothing.
       if (glm::dot(shooter_normal, p - centroid) <= in_plane) {
-        out[v] = 0.0;
+        out[i] = 0.0;
+        if (!visibility.empty()) visibility[i] = facing_away;
         continue;
       }
       pair_random random{mix(context.params.seed ^ mix(v * 0x100000001B3ull ^ shooter_id))};
-      out[v] = query.evaluate(p, mesh.normals[v], a, b, c, shooter_normal, 0, random, rays);
+      out[i] = query.evaluate(p, mesh.normals[v], a, b, c, shooter_normal, 0, random, rays);
+      if (!visibility.empty()) {
+        const double unoccluded = point_polygon_form_factor(p, mesh.normals[v], triangle);
+        visibility[i] = unoccluded <= 0.0      ? facing_away
+                        : out[i] == 0.0        ? hidden
+                        : out[i] == unoccluded ? seen_whole
+                                               : seen_partly;
+      }
     }
     total_rays += rays;
   };
-  for_each_block(context.params.parallel, mesh.vertex_count(), 64, receive);
+  for_each_block(context.params.parallel, receivers.empty() ? mesh.vertex_count() : receivers.size(), 64, receive);
   return total_rays;
 }
 
@@ -199,7 +214,7 @@ namespace {
 
 std::uint64_t shoot(const form_factor_context& context, const shooter& from, std::span<double> out) {
   if (context.params.method == form_factor_method::hemicube) return hemicube_form_factors(context, from, out);
-  return raycast_form_factors(context, from, out);
+  return raycast_form_factors(context, from, {}, out, {});
 }
 
 }  // namespace
@@ -215,14 +230,23 @@ std::uint64_t form_factors_to_element(const form_factor_context& context, int el
   return shoot(context, from, out);
 }
 
-std::uint64_t form_factors_to_patch(const form_factor_context& context, int patch, std::span<double> out) {
-  const patch_mesh& mesh = *context.mesh;
+shooter patch_shooter(const patch_mesh& mesh, int patch) {
   shooter from;
   from.corners = mesh.patch_corners[patch];
   from.normal = mesh.patch_normals[patch];
   from.area = mesh.patch_areas[patch];
   from.patch = patch;
-  return shoot(context, from, out);
+  return from;
+}
+
+std::uint64_t form_factors_to_patch(const form_factor_context& context, int patch, std::span<double> out) {
+  return shoot(context, patch_shooter(*context.mesh, patch), out);
+}
+
+std::uint64_t form_factors_by_rays(const form_factor_context& context, const shooter& from,
+                                   std::span<const int> receivers, std::span<double> out,
+                                   std::span<std::uint8_t> visibility) {
+  return raycast_form_factors(context, from, receivers, out, visibility);
 }
 
 bool visible(const form_factor_context& context, const vec3& from, const vec3& from_normal, const vec3& to,

@@ -76,6 +76,20 @@ struct shooter {
   }
 };
 
+// The patch as a shooter.
+shooter patch_shooter(const patch_mesh& mesh, int patch);
+
+// How a receiver sees a shooter, from its shadow rays.
+enum visibility_class : std::uint8_t { hidden, seen_partly, seen_whole, facing_away };
+
+// Ray-cast F(v, from) (whatever the context's method) for the listed
+// receivers, or every vertex when `receivers` is empty; out, and
+// visibility when not empty, are indexed like the receivers. What adaptive
+// refinement uses to gather at new vertices and to find shadow boundaries.
+std::uint64_t form_factors_by_rays(const form_factor_context& context, const shooter& from,
+                                   std::span<const int> receivers, std::span<double> out,
+                                   std::span<std::uint8_t> visibility = {});
+
 // Shadow-ray visibility of a segment, with both ends lifted off their
 // surfaces along their normals by the context's offset.
 bool visible(const form_factor_context& context, const vec3& from, const vec3& from_normal, const vec3& to,

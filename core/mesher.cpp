@@ -10,6 +10,7 @@
 #include <queue>
 #include <vector>
 
+#include "adaptive.h"
 #include "patch_mesh.h"
 #include "scene_info.h"
 #include "tessellate.h"
@@ -191,6 +192,25 @@ vec3 receive_point(const om_mesh& m, om_mesh::VertexHandle v) {
     if (glm::dot(d, mean) > glm::dot(best, mean)) best = d;
   return p + best * (1e-3 * edge_sum / edges);
 }
+// Appends element `tri` of the finished mesh with its geometric data.
+void append_element(patch_mesh& pm, const glm::ivec3& tri, int surface, int material, int patch) {
+  const vec3 cross =
+      glm::cross(pm.positions[tri[1]] - pm.positions[tri[0]], pm.positions[tri[2]] - pm.positions[tri[0]]);
+  pm.elements.push_back(tri);
+  pm.element_areas.push_back(0.5 * glm::length(cross));
+  pm.element_normals.push_back(glm::normalize(cross));
+  pm.element_surfaces.push_back(surface);
+  pm.element_materials.push_back(material);
+  pm.element_patches.push_back(patch);
+}
+
+glm::ivec3 face_vertices(const om_mesh& m, om_mesh::FaceHandle f) {
+  glm::ivec3 tri;
+  int k = 0;
+  for (om_mesh::VertexHandle v : m.fv_range(f)) tri[k++] = v.idx();
+  return tri;
+}
+
 }  // namespace
 
 bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error) {
@@ -263,19 +283,9 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.vertex_emission[i] = std::numbers::pi * mat.ke;
     pm.vertex_surfaces[i] = m.property(w.vertex_surface, v);
   }
-  for (om_mesh::FaceHandle f : m.faces()) {
-    glm::ivec3 tri;
-    int k = 0;
-    for (om_mesh::VertexHandle v : m.fv_range(f)) tri[k++] = v.idx();
-    const vec3 cross =
-        glm::cross(pm.positions[tri[1]] - pm.positions[tri[0]], pm.positions[tri[2]] - pm.positions[tri[0]]);
-    pm.elements.push_back(tri);
-    pm.element_areas.push_back(0.5 * glm::length(cross));
-    pm.element_normals.push_back(glm::normalize(cross));
-    pm.element_surfaces.push_back(m.property(w.face_surface, f));
-    pm.element_materials.push_back(m.property(w.face_material, f));
-    pm.element_patches.push_back(m.property(w.face_patch, f));
-  }
+  for (om_mesh::FaceHandle f : m.faces())
+    append_element(pm, face_vertices(m, f), m.property(w.face_surface, f), m.property(w.face_material, f),
+                   m.property(w.face_patch, f));
   for (const auto& corners : patch_corners) {
     const vec3 cross = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
     pm.patch_corners.push_back(corners);
@@ -283,7 +293,165 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.patch_areas.push_back(0.5 * glm::length(cross));
   }
   pm.nonmanifold_faces = nonmanifold;
+  if (params.a_priori_min_edge > 0.0) {
+    refinement_pass report;
+    if (!refine_a_priori(pm, params.a_priori_min_edge, report, error)) return false;
+    if (params.a_priori_report) *params.a_priori_report = report;
+  }
   out = std::move(pm);
+  return true;
+}
+
+namespace {
+
+// The longest edge of a face; equal lengths are ordered by edge index, so
+// that "longest" is a strict order and LEPP paths end.
+om_mesh::HalfedgeHandle longest_halfedge(const om_mesh& m, om_mesh::FaceHandle f) {
+  om_mesh::HalfedgeHandle best;
+  double best_length = -1.0;
+  for (om_mesh::HalfedgeHandle h : m.fh_range(f)) {
+    const double length = m.calc_edge_sqr_length(h);
+    if (length > best_length || (length == best_length && m.edge_handle(h).idx() < m.edge_handle(best).idx())) {
+      best = h;
+      best_length = length;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min_edge, std::vector<int>& origin,
+                       std::string& error) {
+  const std::size_t old_vertices = mesh.vertex_count();
+  om_mesh m;
+  OpenMesh::VPropHandleT<int> parent;  // the old vertex whose surface, material and normal side it shares
+  OpenMesh::VPropHandleT<vec3> normal;
+  OpenMesh::FPropHandleT<int> face_origin, face_surface, face_material, face_patch;
+  OpenMesh::FPropHandleT<bool> face_split;  // bisected in this pass (copied to both children)
+  m.add_property(parent);
+  m.add_property(normal);
+  m.add_property(face_origin);
+  m.add_property(face_surface);
+  m.add_property(face_material);
+  m.add_property(face_patch);
+  m.add_property(face_split);
+  for (std::size_t v = 0; v < old_vertices; ++v) {
+    om_mesh::VertexHandle h = m.add_vertex(to_om(mesh.positions[v]));
+    m.property(parent, h) = int(v);
+    m.property(normal, h) = mesh.normals[v];
+  }
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    om_mesh::FaceHandle f =
+        m.add_face(om_mesh::VertexHandle(t[0]), om_mesh::VertexHandle(t[1]), om_mesh::VertexHandle(t[2]));
+    if (!f.is_valid() || f.idx() != int(e)) {
+      error = "element " + std::to_string(e) + " cannot be rebuilt for refinement (non-manifold)";
+      return false;
+    }
+    m.property(face_origin, f) = int(e);
+    m.property(face_surface, f) = mesh.element_surfaces[e];
+    m.property(face_material, f) = mesh.element_materials[e];
+    m.property(face_patch, f) = mesh.element_patches[e];
+    m.property(face_split, f) = false;
+  }
+
+  // Rivara's LEPP bisection: follow the longest-edge propagation path from
+  // the marked face to a terminal edge (the longest edge of both faces
+  // beside it, or a boundary edge), bisect it, and repeat until the marked
+  // face itself has been bisected. Only longest edges are ever split, so
+  // angles stay bounded and no split leaves a hanging vertex.
+  auto split = [&](om_mesh::EdgeHandle e) {
+    om_mesh::HalfedgeHandle h = m.halfedge_handle(e, 0);
+    om_mesh::VertexHandle a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+    om_mesh::VertexHandle mid = m.add_vertex(0.5 * (m.point(a) + m.point(b)));
+    m.property(parent, mid) = m.property(parent, a);
+    m.property(normal, mid) = glm::normalize(m.property(normal, a) + m.property(normal, b));
+    for (int side = 0; side < 2; ++side) {
+      om_mesh::FaceHandle f = m.face_handle(m.halfedge_handle(e, side));
+      if (f.is_valid()) m.property(face_split, f) = true;
+    }
+    m.split_copy(e, mid);
+  };
+  const double min_length = min_edge * min_edge;
+  std::vector<om_mesh::FaceHandle> path;
+  for (int e : marked) {
+    om_mesh::FaceHandle f(e);
+    if (e < 0 || std::size_t(e) >= mesh.element_count() || m.property(face_split, f)) continue;
+    if (m.calc_edge_sqr_length(longest_halfedge(m, f)) <= min_length) continue;
+    path.assign(1, f);
+    while (!path.empty()) {
+      om_mesh::FaceHandle t = path.back();
+      om_mesh::HalfedgeHandle h = longest_halfedge(m, t);
+      om_mesh::FaceHandle next = m.opposite_face_handle(h);
+      if (next.is_valid() && m.edge_handle(longest_halfedge(m, next)) != m.edge_handle(h)) {
+        path.push_back(next);
+        continue;
+      }
+      split(m.edge_handle(h));
+      path.pop_back();
+      // The marked face is done once it is split; faces earlier on the path
+      // were only there to reach it.
+      if (!path.empty() && m.property(face_split, path.front())) break;
+    }
+    if (m.n_faces() > max_patch_elements) {
+      error = "refinement would exceed " + std::to_string(max_patch_elements) + " elements; use a larger --min-edge";
+      return false;
+    }
+  }
+
+  patch_mesh out;
+  out.scene_diagonal = mesh.scene_diagonal;
+  out.max_edge = mesh.max_edge;
+  out.nonmanifold_faces = mesh.nonmanifold_faces;
+  out.positions = std::move(mesh.positions);
+  out.normals = std::move(mesh.normals);
+  out.receive_points = std::move(mesh.receive_points);
+  out.vertex_rho = std::move(mesh.vertex_rho);
+  out.vertex_emission = std::move(mesh.vertex_emission);
+  out.vertex_surfaces = std::move(mesh.vertex_surfaces);
+  // Old vertices keep everything, their receive points included: their
+  // radiosity was computed there. New ones copy their parent's attributes.
+  for (std::size_t v = old_vertices; v < m.n_vertices(); ++v) {
+    const om_mesh::VertexHandle h{int(v)};
+    const int p = m.property(parent, h);
+    out.positions.push_back(to_glm(m.point(h)));
+    out.normals.push_back(m.property(normal, h));
+    out.receive_points.push_back(receive_point(m, h));
+    out.vertex_rho.push_back(out.vertex_rho[p]);
+    out.vertex_emission.push_back(out.vertex_emission[p]);
+    out.vertex_surfaces.push_back(out.vertex_surfaces[p]);
+  }
+  // A patch that was a single element stays its element: its children
+  // become patches of their own (the reference discretisation).
+  std::vector<int> patch_size(mesh.patch_count(), 0);
+  for (int p : mesh.element_patches) ++patch_size[p];
+  out.patch_corners = std::move(mesh.patch_corners);
+  out.patch_normals = std::move(mesh.patch_normals);
+  out.patch_areas = std::move(mesh.patch_areas);
+  std::vector<bool> patch_taken(patch_size.size(), false);
+  origin.clear();
+  for (om_mesh::FaceHandle f : m.faces()) {
+    const glm::ivec3 tri = face_vertices(m, f);
+    int patch = m.property(face_patch, f);
+    append_element(out, tri, m.property(face_surface, f), m.property(face_material, f), patch);
+    origin.push_back(m.property(face_origin, f));
+    if (patch_size[patch] == 1 && m.property(face_split, f)) {
+      if (patch_taken[patch]) {
+        patch = int(out.patch_areas.size());
+        out.patch_corners.emplace_back();
+        out.patch_normals.emplace_back();
+        out.patch_areas.emplace_back();
+        out.element_patches.back() = patch;
+      } else {
+        patch_taken[patch] = true;
+      }
+      out.patch_corners[patch] = {out.positions[tri[0]], out.positions[tri[1]], out.positions[tri[2]]};
+      out.patch_normals[patch] = out.element_normals.back();
+      out.patch_areas[patch] = out.element_areas.back();
+    }
+  }
+  mesh = std::move(out);
   return true;
 }
 

@@ -51,10 +51,16 @@ struct patch_mesh {
   std::size_t patch_count() const { return patch_areas.size(); }
 };
 
+struct refinement_pass;  // adaptive.h
+
 struct mesher_params {
   double max_edge = 0.0;               // longest element edge; 0 = default_max_edge(scene)
   double crease_angle_degrees = 30.0;  // vertices of faces meeting at a sharper angle are split
   double patch_edge = 0.0;             // longest patch edge; 0 or <= max_edge: patches are the elements
+  // > 0: adaptive meshing's a priori pass (adaptive.h), bisecting elements
+  // at contacts and near emitters down to this edge
+  double a_priori_min_edge = 0.0;
+  refinement_pass* a_priori_report = nullptr;  // if set, what the a priori pass did
 };
 
 // Largest mesh make_patch_mesh builds; past it, a clear error.
@@ -74,6 +80,19 @@ inline constexpr std::size_t max_patch_elements = 5'000'000;
 //
 // Returns false with `error` set when the mesh would exceed max_patch_elements.
 bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error);
+
+// Adaptive refinement of a built mesh by conforming longest-edge bisection
+// (Rivara's LEPP): each marked element whose longest edge exceeds min_edge
+// is bisected once, together with the neighbours that conformity needs, so
+// no vertex ends inside another element's edge within a surface. Vertices
+// keep their indices (new ones are appended: edge midpoints with their
+// parent's surface, material and the mean of the two normals); elements are
+// renumbered and origin[e] names the element of the old mesh that contains
+// e. Patches stay (their elements still tile them), except that a patch
+// that was a single element follows its element's split. Returns false with
+// `error` past max_patch_elements.
+bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min_edge, std::vector<int>& origin,
+                       std::string& error);
 
 // Barycentric coordinates of `point` (projected onto the element's plane).
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point);

@@ -1,6 +1,7 @@
 #include "radiosity.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "point_lights.h"
 
@@ -23,11 +24,14 @@ rgb spread_to_elements(radiosity_state& state, const std::vector<rgb>& delta) {
 
 void update_fraction(radiosity_state& state) {
   const patch_mesh& mesh = *state.mesh;
-  rgb unshot(0.0);
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) unshot += state.unshot[e] * mesh.element_areas[e];
-  state.balance.unshot = unshot;  // summed afresh: a running difference would lose digits near convergence
+  // Refinement can make some unshot negative: the fraction counts its
+  // magnitude, so that it cannot cancel the rest.
+  rgb positive(0.0), negative(0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    (channel_sum(state.unshot[e]) >= 0.0 ? positive : negative) += state.unshot[e] * mesh.element_areas[e];
+  state.balance.unshot = positive + negative;  // summed afresh: a running difference would lose digits
   const double emitted = channel_sum(state.balance.emitted);
-  state.stats.unshot_fraction = emitted > 0.0 ? channel_sum(unshot) / emitted : 0.0;
+  state.stats.unshot_fraction = emitted > 0.0 ? (channel_sum(positive) - channel_sum(negative)) / emitted : 0.0;
 }
 
 void shoot_point_lights(radiosity_state& state) {
@@ -59,6 +63,13 @@ void shoot_patch(radiosity_state& state, std::size_t patch) {
   state.balance.shot += power;
   const rgb shot = power / mesh.patch_areas[patch];
   const rgb shot_emission = emission_power / mesh.patch_areas[patch];
+  int& record = state.patch_log[patch];
+  if (record < 0) {
+    record = int(state.shot_log.size());
+    state.shot_log.push_back({patch_shooter(mesh, int(patch))});
+  }
+  state.shot_log[record].radiosity += shot;
+  state.shot_log[record].emission += shot_emission;
   std::vector<rgb>& delta = state.received;  // reused from shot to shot: no allocation on the hot path
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const double f = state.scratch[v];
@@ -84,6 +95,7 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   state->patch_elements.assign(mesh.patch_count(), {});
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     state->patch_elements[mesh.element_patches[e]].push_back(int(e));
+  state->patch_log.assign(mesh.patch_count(), -1);
   restart_radiosity(*state);
   return state;
 }
@@ -95,6 +107,9 @@ void restart_radiosity(radiosity_state& state) {
   state.unshot.assign(mesh.element_count(), rgb(0.0));
   state.balance = {};
   state.stats = {};
+  state.shot_log.clear();
+  std::fill(state.patch_log.begin(), state.patch_log.end(), -1);
+  state.adaptive = {};
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const glm::ivec3 t = mesh.elements[e];
     state.unshot[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
@@ -110,20 +125,117 @@ bool step_radiosity(radiosity_state& state) {
   const auto start = std::chrono::steady_clock::now();
   if (!state.lights_shot) {
     shoot_point_lights(state);
+    ++state.stats.shots;
+  } else if (refinement_due(state)) {
+    if (refine_pass(state)) ++state.stats.refinements;
   } else {
-    // The patch with the most unshot power shoots next.
+    // The patch with the most unshot power shoots next. Refinement can
+    // leave negative unshot power (a shadow the coarse mesh had lit): it is
+    // shot like any other, by magnitude.
     const patch_mesh& mesh = *state.mesh;
     std::vector<double>& power = state.patch_power;
     std::fill(power.begin(), power.end(), 0.0);
     for (std::size_t e = 0; e < mesh.element_count(); ++e)
       power[mesh.element_patches[e]] += channel_sum(state.unshot[e]) * mesh.element_areas[e];
-    const auto most = std::max_element(power.begin(), power.end());
-    if (most == power.end() || !(*most > 0.0)) return false;
+    const auto most =
+        std::max_element(power.begin(), power.end(), [](double a, double b) { return std::abs(a) < std::abs(b); });
+    if (most == power.end() || !(std::abs(*most) > 0.0)) return false;
     shoot_patch(state, std::size_t(most - power.begin()));
+    ++state.stats.shots;
   }
-  ++state.stats.shots;
   update_fraction(state);
   state.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+namespace {
+
+rgb element_mean(const patch_mesh& mesh, const std::vector<rgb>& radiosity, std::size_t e) {
+  const glm::ivec3 t = mesh.elements[e];
+  return (radiosity[t[0]] + radiosity[t[1]] + radiosity[t[2]]) / 3.0;
+}
+
+bool same_triangle(const std::array<vec3, 3>& a, const std::array<vec3, 3>& b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
+}  // namespace
+
+bool refine_radiosity(radiosity_state& state, std::span<const int> marked, double min_edge, std::string& error,
+                      std::size_t* new_vertices) {
+  const patch_mesh& old = *state.mesh;
+  auto refined = std::make_shared<patch_mesh>(old);
+  std::vector<int> origin;
+  if (!refine_patch_mesh(*refined, marked, min_edge, origin, error)) return false;
+  const patch_mesh& mesh = *refined;
+  const std::size_t old_vertices = old.vertex_count();
+  if (new_vertices) *new_vertices = mesh.vertex_count() - old_vertices;
+
+  form_factor_context context = make_form_factor_context(mesh, state.params.form_factors);
+  // New vertices gather what every shooter has shot so far: the very sum
+  // that the shots would have added had the vertex been there all along.
+  std::vector<int> added;
+  for (std::size_t v = old_vertices; v < mesh.vertex_count(); ++v) added.push_back(int(v));
+  std::vector<rgb> radiosity = std::move(state.radiosity), direct = std::move(state.direct);
+  radiosity.resize(mesh.vertex_count(), rgb(0.0));
+  direct.resize(mesh.vertex_count(), rgb(0.0));
+  std::vector<rgb> gathered(added.size(), rgb(0.0)), gathered_direct(added.size(), rgb(0.0));
+  std::vector<double> f(added.size());
+  for (const shot_record& record : state.shot_log) {
+    state.stats.rays += form_factors_by_rays(context, record.from, added, f);
+    for (std::size_t i = 0; i < added.size(); ++i) {
+      gathered[i] += f[i] * record.radiosity;
+      gathered_direct[i] += f[i] * record.emission;
+    }
+  }
+  std::vector<rgb> lights;
+  if (!state.source->lights.empty() && state.lights_shot) {
+    std::uint64_t rays = 0;
+    lights = point_light_radiosity(*state.source, mesh, context, rays);
+    state.stats.rays += rays;
+  }
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    const int v = added[i];
+    const rgb light = lights.empty() ? rgb(0.0) : lights[v];
+    radiosity[v] = mesh.vertex_emission[v] + mesh.vertex_rho[v] * gathered[i] + light;
+    direct[v] = mesh.vertex_rho[v] * gathered_direct[i] + light;
+  }
+
+  // Each element keeps what its origin had shot (S), so its unshot moves
+  // by the change in its vertices' mean: U = M B - S holds on the new mesh.
+  std::vector<rgb> unshot(mesh.element_count()), unshot_emission(mesh.element_count());
+  rgb before(0.0), after(0.0);
+  for (std::size_t e = 0; e < old.element_count(); ++e) before += state.unshot[e] * old.element_areas[e];
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const int o = origin[e];
+    unshot[e] = state.unshot[o] + element_mean(mesh, radiosity, e) - element_mean(old, radiosity, o);
+    unshot_emission[e] = state.unshot_emission[o];  // emission is uniform over an element
+    after += unshot[e] * mesh.element_areas[e];
+  }
+
+  // A patch whose outline changed (a single-element patch that split) is a
+  // new shooter: its old record stays in the log for the vertices to come.
+  std::vector<int> patch_log(mesh.patch_count(), -1);
+  for (std::size_t p = 0; p < old.patch_count(); ++p)
+    if (same_triangle(old.patch_corners[p], mesh.patch_corners[p])) patch_log[p] = state.patch_log[p];
+
+  state.refined_mesh = refined;
+  state.mesh = refined.get();
+  state.form_factors = std::move(context);
+  state.radiosity = std::move(radiosity);
+  state.direct = std::move(direct);
+  state.unshot = std::move(unshot);
+  state.unshot_emission = std::move(unshot_emission);
+  state.patch_log = std::move(patch_log);
+  state.balance.refined += after - before;
+  state.scratch.assign(mesh.vertex_count(), 0.0);
+  state.received.assign(mesh.vertex_count(), rgb(0.0));
+  state.patch_power.assign(mesh.patch_count(), 0.0);
+  state.patch_elements.assign(mesh.patch_count(), {});
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    state.patch_elements[mesh.element_patches[e]].push_back(int(e));
+  update_fraction(state);
+  if (!state.lights_shot) state.stats.unshot_fraction = 1.0;
   return true;
 }
 
@@ -165,7 +277,8 @@ rgb mean_indirect_irradiance(const radiosity_state& state) {
 std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state) {
   const patch_mesh& mesh = *state.mesh;
   auto snap = std::make_shared<radiosity_snapshot>();
-  snap->version = state.stats.shots;
+  snap->version = state.stats.shots + state.stats.refinements;
+  snap->mesh = state.refined_mesh;
   snap->stats = state.stats;
   snap->ambient = ambient_radiosity(state);
   snap->radiosity.resize(mesh.vertex_count());

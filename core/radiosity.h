@@ -19,8 +19,11 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <span>
+#include <string>
 #include <vector>
 
+#include "adaptive.h"
 #include "form_factor.h"
 #include "patch_mesh.h"
 
@@ -28,6 +31,7 @@ namespace bounce {
 
 struct radiosity_params {
   form_factor_params form_factors;
+  adaptive_params adaptive;  // a posteriori refinement during shooting (off by default)
 };
 
 // Power bookkeeping, per channel, in the scene's power units (radiosity x
@@ -37,10 +41,24 @@ struct power_balance {
   rgb received{0.0};  // reflected power added to elements' unshot by shots
   rgb shot{0.0};
   rgb unshot{0.0};
+  // Adaptive refinement: what the new vertices gathered from the shots
+  // already made, less what the coarse elements had assumed there (signed;
+  // a shadow found inside an element makes it negative).
+  rgb refined{0.0};
+};
+
+// A shooter that has shot, with all the radiosity it has shot so far: what
+// a vertex added later gathers from, F(v, shooter) x radiosity, so that
+// every shot made is accounted for exactly.
+struct shot_record {
+  shooter from;
+  rgb radiosity{0.0};
+  rgb emission{0.0};  // the part of it that was the shooter's own emission
 };
 
 struct radiosity_stats {
   std::uint64_t shots = 0;
+  std::uint64_t refinements = 0;  // adaptive passes that changed the mesh
   std::uint64_t rays = 0;
   double seconds = 0.0;          // wall time spent in steps
   double unshot_fraction = 1.0;  // unshot power / emitted power (sum of channels)
@@ -48,6 +66,7 @@ struct radiosity_stats {
 
 struct radiosity_state {
   const patch_mesh* mesh = nullptr;
+  std::shared_ptr<const patch_mesh> refined_mesh;  // set by refine_radiosity: the mesh now in use
   const scene* source = nullptr;
   radiosity_params params;
   form_factor_context form_factors;
@@ -63,18 +82,35 @@ struct radiosity_state {
   std::vector<rgb> received;        // what each vertex received in the current shot
   std::vector<double> patch_power;  // unshot power per patch, for choosing the shooter
   std::vector<std::vector<int>> patch_elements;
+  std::vector<shot_record> shot_log;  // every shooter that has shot (a patch split later keeps its record)
+  std::vector<int> patch_log;         // per patch: its entry in shot_log, -1 before its first shot
+  adaptive_progress adaptive;
 };
 
 // Sets B = E, U = M E, and prepares the form-factor method.
 std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
                                                       const radiosity_params& params);
 
-// Back to B = E, U = M E, keeping the form-factor method (and its BVH).
+// Back to B = E, U = M E, keeping the form-factor method (and its BVH) and
+// the mesh (refined, if it was); the refinement schedule starts again.
 void restart_radiosity(radiosity_state& state);
 
 // One step: point lights first (all of them, with shadow rays), then one
-// element shot. Returns false when nothing is left to shoot.
+// patch shot, or, with adaptive refinement on and due, a refinement pass
+// (state.mesh then changes). Returns false when nothing is left to do.
 bool step_radiosity(radiosity_state& state);
+
+// Refines the state's mesh (refine_patch_mesh: the marked elements, no
+// edge below min_edge) and carries the solution over exactly: each new
+// vertex gathers F(v, s) x radiosity from every shooter s in the shot log
+// (and the point lights again), old vertices keep theirs, and each element's
+// unshot becomes its origin's plus the change in its vertices' mean, so
+// U = M B - S still holds. The refined mesh is state.refined_mesh (the old
+// one may then be released). Returns false with `error` if the mesh would
+// grow too large; the state is then unchanged. `new_vertices` (may be
+// null) receives how many vertices were added.
+bool refine_radiosity(radiosity_state& state, std::span<const int> marked, double min_edge, std::string& error,
+                      std::size_t* new_vertices = nullptr);
 
 struct stop_criterion {
   double unshot_fraction = 0.0;  // stop when at or below (0: no limit)
@@ -98,10 +134,11 @@ rgb mean_indirect_irradiance(const radiosity_state& state);
 
 // An immutable copy for the viewer, published after every step.
 struct radiosity_snapshot {
-  std::uint64_t version = 0;             // shots so far; increases with every step
-  std::vector<glm::vec3> radiosity;      // per vertex, float for GL
-  std::vector<glm::vec3> direct;         // per vertex: the part of radiosity straight from the lights
-  std::vector<glm::vec3> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
+  std::uint64_t version = 0;               // shots and refinements so far; increases with every step
+  std::shared_ptr<const patch_mesh> mesh;  // the refined mesh the arrays belong to; null: the mesh the state began with
+  std::vector<glm::vec3> radiosity;        // per vertex, float for GL
+  std::vector<glm::vec3> direct;           // per vertex: the part of radiosity straight from the lights
+  std::vector<glm::vec3> unshot_vertex;    // per vertex: mean unshot of its elements (false colour)
   rgb ambient{0.0};
   radiosity_stats stats;
 };

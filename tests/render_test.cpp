@@ -289,6 +289,33 @@ TEST(Window, RayTracesAStillWhileTheViewRuns) {
   EXPECT_NE(text.find("still: 120x120"), std::string::npos) << text;
 }
 
+TEST(Window, ShowsTheMeshRefiningWhileItSolves) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  scratch_dir dir;
+  // Adaptive meshing in the window: each refinement pass brings a larger
+  // mesh, uploaded between frames.
+  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
+                              " view --max-edge 150 --adaptive --until 1e-3 --frames 40 "
+                              "--screenshot " +
+                              dir.path("window.png") + " --exit >" + dir.path("out.txt") + " 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  std::ifstream out(dir.path("out.txt"));
+  const std::string text((std::istreambuf_iterator<char>(out)), {});
+  std::size_t shown = 0, meshed = 0;
+  const std::size_t at = text.find("triangles (");
+  ASSERT_NE(at, std::string::npos) << text;
+  ASSERT_EQ(std::sscanf(text.c_str() + text.rfind(", ", at) + 2, "%zu triangles (%zu as meshed)", &shown, &meshed), 2)
+      << text;
+  EXPECT_GT(shown, meshed) << text;
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+  std::string error;
+  ASSERT_TRUE(read_png_rgb8(dir.path("window.png"), w, h, rgb, error)) << error;
+  EXPECT_GT(w, 0);
+}
+
 TEST(Window, PlotsTheErrorAgainstAPathTracedReference) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";

@@ -36,6 +36,7 @@ bool mesh_renderer::init(std::string& error) {
 }
 
 void mesh_renderer::upload(const patch_mesh& mesh) {
+  refined_.reset();
   vertex_count_ = mesh.vertex_count();
   // Element size seen from a vertex: the square root of its elements' mean area.
   std::vector<double> area_sum(vertex_count_, 0.0);
@@ -90,6 +91,11 @@ void mesh_renderer::upload(const patch_mesh& mesh) {
 }
 
 void mesh_renderer::update(const radiosity_snapshot& snapshot) {
+  if (snapshot.mesh && snapshot.mesh != refined_) {
+    upload(*snapshot.mesh);
+    refined_ = snapshot.mesh;
+  }
+  if (snapshot.radiosity.size() != vertex_count_) return;  // a solution of another mesh: nothing to show
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(vertex_count_ * 3 * sizeof(float)), snapshot.radiosity.data());
   glBufferSubData(GL_ARRAY_BUFFER, GLintptr(vertex_count_ * 3 * sizeof(float)),

@@ -61,10 +61,15 @@ std::vector<float> resample_log(const std::vector<point>& history, double end, i
 }  // namespace
 
 std::string setting_key(const solver_options& o) {
-  char key[160];
+  char key[200];
   std::snprintf(key, sizeof key, "%s %d, edge %g, patches %g, until %g", o.method.c_str(),
                 o.method == "hemicube" ? o.hemicube_resolution : o.shadow_rays, o.max_edge, o.patch_edge, o.until);
-  return key;
+  std::string text = key;
+  if (o.adaptive) {
+    std::snprintf(key, sizeof key, ", adaptive %g, min edge %g", o.tolerance, o.min_edge);
+    text += key;
+  }
+  return text;
 }
 
 panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still,
@@ -106,6 +111,16 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     float until = float(std::log10(std::max(state.solver.until, 1e-12)));
     ImGui::SliderFloat("stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f");
     state.solver.until = std::pow(10.0, double(until));
+    // Adaptive meshing: refine where the light changes (applies on re-mesh).
+    ImGui::Checkbox("adaptive meshing", &state.solver.adaptive);
+    if (state.solver.adaptive) {
+      float tolerance = float(state.solver.tolerance);
+      ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+      state.solver.tolerance = double(tolerance);
+      float min_edge = float(state.solver.min_edge);
+      ImGui::InputFloat("min edge (0: max edge / 8)", &min_edge, 0, 0, "%.4g");
+      state.solver.min_edge = std::max(0.0f, min_edge);
+    }
     if (ImGui::Button("Apply (re-mesh)")) act.apply_mesh = true;
     ImGui::SameLine();
     if (view.running) {
@@ -124,6 +139,9 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::Text("%s", view.converged ? "converged" : view.running ? "solving" : "paused");
     ImGui::Text("elements %zu, vertices %zu, patches %zu", view.mesh->element_count(), view.mesh->vertex_count(),
                 view.mesh->patch_count());
+    if (view.meshed_elements != view.mesh->element_count())
+      ImGui::Text("adaptive: %zu elements as meshed, %llu refinement passes since", view.meshed_elements,
+                  static_cast<unsigned long long>(st.refinements));
     ImGui::Text("shots %llu, unshot %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
     const double seconds = std::max(st.seconds, 1e-9);
     ImGui::Text("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.shots) / seconds, double(st.rays) / seconds * 1e-6,

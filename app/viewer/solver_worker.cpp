@@ -144,7 +144,8 @@ void solver_worker::publish() {
   auto v = std::make_shared<worker_view>();
   v->mesh_version = mesh_version_;
   v->source = scene_;
-  v->mesh = mesh_;
+  v->mesh = state_ && state_->refined_mesh ? state_->refined_mesh : mesh_;  // adaptive meshing refines it
+  v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
   if (state_) v->solution = make_snapshot(*state_);
   v->history = history_;
   v->error = error_;

@@ -30,7 +30,8 @@ struct convergence_point {
 struct worker_view {
   std::uint64_t mesh_version = 0;  // changes when a new scene or mesh density is loaded
   std::shared_ptr<const scene> source;
-  std::shared_ptr<const patch_mesh> mesh;
+  std::shared_ptr<const patch_mesh> mesh;  // the mesh being solved: refined while solving, with adaptive meshing
+  std::size_t meshed_elements = 0;         // elements as the mesher built them
   std::shared_ptr<const radiosity_snapshot> solution;
   std::vector<convergence_point> history;  // unshot fraction against time since the (re)start
   bool running = false;                    // shooting now

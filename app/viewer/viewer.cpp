@@ -361,12 +361,13 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
                         error_shown.history.back().seconds, error_shown.summary.c_str());
         }
         if (scripted_end && frames_timed > 0) {
-          const std::shared_ptr<const patch_mesh> mesh = worker.latest()->mesh;
+          const std::shared_ptr<const worker_view> last = worker.latest();
           std::printf(
-              "view: %dx%d, %zu triangles, %d frames: %.2f ms per frame (%.1f fps); radiosity upload %.3f ms "
-              "(mean of %d)\n",
-              width, height, mesh ? mesh->element_count() : 0, frames_timed, frame_ms_sum / frames_timed,
-              1000.0 * frames_timed / frame_ms_sum, uploads ? upload_ms_sum / uploads : 0.0, uploads);
+              "view: %dx%d, %zu triangles (%zu as meshed), %d frames: %.2f ms per frame (%.1f fps); radiosity upload "
+              "%.3f ms (mean of %d)\n",
+              width, height, last->mesh ? last->mesh->element_count() : 0, last->meshed_elements, frames_timed,
+              frame_ms_sum / frames_timed, 1000.0 * frames_timed / frame_ms_sum,
+              uploads ? upload_ms_sum / uploads : 0.0, uploads);
         }
         if (scripted_end && options.exit_after) glfwSetWindowShouldClose(window, GLFW_TRUE);
       }
