@@ -120,7 +120,9 @@ int run_render(const scene& s, const solver_options& solver, const render_option
     if (options.frames_dir.empty() || !frames_ok || st.stats.shots % std::uint64_t(options.frame_every) != 0) return;
     view.renderer().update(*make_snapshot(st));
     char name[64];
-    std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(st.stats.shots));
+    // Named by step (shots and refinement passes), so that no frame overwrites another.
+    std::snprintf(name, sizeof name, "frame_%06llu.png",
+                  static_cast<unsigned long long>(st.stats.shots + st.stats.refinements));
     frames_ok = write_frame((std::filesystem::path(options.frames_dir) / name).string());
     ++frames;
   });

@@ -110,7 +110,7 @@ std::vector<int> contact_marks(const patch_mesh& mesh, double min_edge) {
       if (uses.at(edge_key(t[k], t[(k + 1) % 3])) == 1)
         on_surface_boundary[t[k]] = on_surface_boundary[t[(k + 1) % 3]] = true;
   const double tolerance = 1e-6 * mesh.scene_diagonal;
-  const element_grid grid(mesh, std::max(mesh.max_edge, 1e-12), tolerance);
+  const element_grid grid(mesh, std::max(mesh.max_edge, mesh.scene_diagonal / 64.0), tolerance);
   std::vector<int> marks;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const glm::ivec3 t = mesh.elements[e];
@@ -118,7 +118,9 @@ std::vector<int> contact_marks(const patch_mesh& mesh, double min_edge) {
       const int a = t[k], b = t[(k + 1) % 3];
       if (uses.at(edge_key(a, b)) != 1) continue;
       const vec3 pa = mesh.positions[a], pb = mesh.positions[b];
-      const int samples = std::max(2, int(std::ceil(glm::length(pb - pa) / (0.5 * min_edge))) + 1);
+      // (capped: a boundary edge is never longer than the starting edge, and
+      // the mesher refuses a minimum edge below max_edge / 256)
+      const int samples = int(std::clamp(std::ceil(glm::length(pb - pa) / (0.5 * min_edge)) + 1.0, 2.0, 1024.0));
       bool touched = false;
       for (int i = 0; i < samples; ++i) {
         const vec3 q = pa + (pb - pa) * (double(i) / (samples - 1));
@@ -229,13 +231,20 @@ std::vector<int> shadow_marks(radiosity_state& state, const adaptive_params& par
   const patch_mesh& mesh = *state.mesh;
   const double min_edge = resolved_min_edge(params, mesh);
   const double floor = params.floor * mean_exitance(state);
-  const double emitted = channel_sum(state.balance.emitted);
+  // The strong shooters: at least params.shadow_shooters of the strongest
+  // one's shot power (an emitter meshed into many elements has many equal
+  // shooters), the strongest max_shadow_shooters of them.
+  std::vector<std::pair<double, const shot_record*>> strong;
+  for (const shot_record& record : state.shot_log)
+    strong.emplace_back(channel_sum(record.radiosity) * record.from.area, &record);
+  std::sort(strong.begin(), strong.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (strong.size() > std::size_t(params.max_shadow_shooters)) strong.resize(std::size_t(params.max_shadow_shooters));
   std::vector<double> f(mesh.vertex_count());
   std::vector<std::uint8_t> seen(mesh.vertex_count());
   std::vector<int> marks;
-  for (const shot_record& record : state.shot_log) {
-    const double power = channel_sum(record.radiosity) * record.from.area;
-    if (!(power >= params.shadow_shooters * emitted)) continue;
+  for (const auto& [power, entry] : strong) {
+    if (!(power >= params.shadow_shooters * strong.front().first)) break;
+    const shot_record& record = *entry;
     state.stats.rays += form_factors_by_rays(state.form_factors, record.from, {}, f, seen);
     for (std::size_t e = 0; e < mesh.element_count(); ++e) {
       const glm::ivec3 t = mesh.elements[e];

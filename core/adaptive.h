@@ -9,7 +9,8 @@
 // progressive shooting, elements whose vertex radiosities differ by more
 // than a tolerance (relative, with an absolute floor in dark regions) and
 // elements on a shadow boundary of a strong shooter (its shadow rays reach
-// some of their vertices and not others) are bisected, the solution carried
+// some of their vertices and not others) are bisected (while longer than
+// the minimum edge), the solution carried
 // over exactly (refine_radiosity), and shooting goes on; again each time the
 // unshot power has fallen by `refine_every`, until a pass finds nothing to
 // split or every marked element is at the minimum edge.
@@ -28,12 +29,14 @@ struct radiosity_state;
 
 struct adaptive_params {
   bool enabled = false;
-  double tolerance = 0.5;         // split where vertex radiosities differ by more than this fraction of their mean
-  double floor = 0.05;            // ... or of this fraction of the scene's mean exitance, whichever is larger
-  double min_edge = 0.0;          // no split makes an edge shorter than this; 0 = max_edge / 8
-  double refine_every = 3.0;      // a pass each time the unshot power has fallen this many times
-  int max_passes = 12;            // a posteriori passes at most
-  double shadow_shooters = 0.02;  // shooters with at least this share of the emitted power cast shadows that count
+  double tolerance = 0.5;        // split where vertex radiosities differ by more than this fraction of their mean
+  double floor = 0.05;           // ... or of this fraction of the scene's mean exitance, whichever is larger
+  double min_edge = 0.0;         // elements whose longest edge is at most this are not split; 0 = max_edge / 8
+  double refine_every = 3.0;     // a pass each time the unshot power has fallen this many times
+  int max_passes = 12;           // a posteriori passes at most
+  double shadow_shooters = 0.1;  // shooters with at least this share of the strongest one's shot power cast
+                                 // shadows that count ...
+  int max_shadow_shooters = 32;  // ... the strongest this many of them
 };
 
 // The starting element size of adaptive meshing when none is given: 1.5x
@@ -78,8 +81,8 @@ bool refine_a_priori(patch_mesh& mesh, double min_edge, refinement_pass& report,
 
 // A posteriori marks on a solution (sorted, unique): vertex radiosities
 // that differ beyond the tolerance, and shadow boundaries of the shooters
-// in the state's shot log that carry at least params.shadow_shooters of
-// the emitted power (ray cast again, visibility per vertex).
+// in the state's shot log (params.shadow_shooters; ray cast again,
+// visibility per vertex).
 std::vector<int> gradient_marks(const radiosity_state& state, const adaptive_params& params);
 std::vector<int> shadow_marks(radiosity_state& state, const adaptive_params& params);
 

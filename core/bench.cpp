@@ -59,14 +59,16 @@ struct vertex_judge {
   std::vector<rgb> exact;
   double exact_power = 0.0;
   const patch_mesh* exact_for = nullptr;  // adaptive meshing changes the mesh: the exact values follow
+  std::size_t exact_vertices = 0;
 
   vertex_judge(const scene& source, exact_kind k) : s(source), kind(k) {}
 
   void judge(const patch_mesh& mesh, std::span<const rgb> radiosity, bench_point& p) {
-    if (exact_for != &mesh) {
+    if (exact_for != &mesh || exact_vertices != mesh.vertex_count()) {  // (a new mesh may reuse an address)
       exact = exact_vertex_radiosity(kind, s, mesh);
       exact_power = channel_sum(exact_reflected_power(kind, s, mesh));
       exact_for = &mesh;
+      exact_vertices = mesh.vertex_count();
     }
     const vertex_error e = vertex_relative_error(radiosity, exact);
     p.error = e.rmse;

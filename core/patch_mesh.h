@@ -84,7 +84,8 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
 // Adaptive refinement of a built mesh by conforming longest-edge bisection
 // (Rivara's LEPP): each marked element whose longest edge exceeds min_edge
 // is bisected once, together with the neighbours that conformity needs, so
-// no vertex ends inside another element's edge within a surface. Vertices
+// no vertex ends inside another element's edge within a smooth piece of a
+// surface (vertices split at creases and material changes bound pieces). Vertices
 // keep their indices (new ones are appended: edge midpoints with their
 // parent's surface, material and the mean of the two normals); elements are
 // renumbered and origin[e] names the element of the old mesh that contains

@@ -307,6 +307,41 @@ TEST(Adaptive, RefinementConcentratesAlongTheBlocksShadowEdges) {
   EXPECT_GT(near_density, 8.0 * open_density) << near_density << " vs " << open_density;
 }
 
+TEST(Adaptive, APrioriMarksContactsAndElementsNearEmitters) {
+  // Cornell box: contacts are the blocks' feet only (the floor and the
+  // blocks), never the walls, whose boundaries meet the floor's.
+  const scene cornell = load(default_scene_path);
+  const patch_mesh mesh = mesh_of(cornell, 100.0, 400.0);
+  const std::vector<int> contacts = contact_marks(mesh, 10.0);
+  ASSERT_FALSE(contacts.empty());
+  for (int e : contacts) {
+    const std::string& name = cornell.surfaces[mesh.element_surfaces[e]].name;
+    EXPECT_TRUE(name.find("floor") != std::string::npos || name.find("block") != std::string::npos) << name;
+  }
+  // A small emitter 5 cm above a 1 m floor, facing it: the floor under it is
+  // marked, the far floor is not; nothing behind the emitter is.
+  scene s;
+  const int grey = add_material(s, rgb(0.5));
+  const int light = add_material(s, rgb(0.0), rgb(1.0));
+  add_polygon(s, {{-0.5, 0, -0.5}, {-0.5, 0, 0.5}, {0.5, 0, 0.5}, {0.5, 0, -0.5}}, grey);
+  add_polygon(s, {{-0.05, 0.05, -0.05}, {0.05, 0.05, -0.05}, {0.05, 0.05, 0.05}, {-0.05, 0.05, 0.05}}, light);
+  const patch_mesh lit = mesh_of(s, 0.1, 0.1);
+  const std::vector<int> near = emitter_marks(lit, 0.01);
+  ASSERT_FALSE(near.empty());
+  for (int e : near) {
+    const glm::ivec3 t = lit.elements[e];
+    const vec3 c = (lit.positions[t[0]] + lit.positions[t[1]] + lit.positions[t[2]]) / 3.0;
+    EXPECT_LT(glm::length(vec3(c.x, 0.0, c.z)), 0.25) << "marked far from the emitter";
+  }
+  patch_mesh refined = lit;
+  refinement_pass report;
+  std::string error;
+  ASSERT_TRUE(refine_a_priori(refined, 0.01, report, error)) << error;
+  EXPECT_GT(report.emitter, 0u);
+  EXPECT_GT(refined.element_count(), lit.element_count());
+  EXPECT_TRUE(emitter_marks(refined, 0.01).empty());  // refined until nothing is marked
+}
+
 TEST(Adaptive, PublishesTheRefinedMeshWithItsSolution) {
   const scene s = load(default_scene_path);
   const patch_mesh mesh = mesh_of(s, 150.0, 600.0);

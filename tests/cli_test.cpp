@@ -278,6 +278,35 @@ TEST(Cli, SolveWritesStatsAndPly) {
   EXPECT_NE(text.find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
 }
 
+TEST(Cli, AdaptiveMeshingRefinesInSolveRenderAndTrace) {
+  scratch_dir dir;
+  const std::string stats = dir.path("stats.json"), ply = dir.path("refined.ply");
+  run_result r = run("solve --adaptive --max-edge 150 --until 0.02 --stats " + stats + " --ply " + ply);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("a priori refinement: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("refinement at unshot "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("adaptive mesh: "), std::string::npos) << r.out;
+  nlohmann::json j = nlohmann::json::parse(slurp(stats));
+  EXPECT_TRUE(j["adaptive"].get<bool>());
+  ASSERT_FALSE(j["refinement_passes"].empty());
+  const auto& first = j["refinement_passes"][0];
+  EXPECT_GT(first["elements_after"].get<int>(), first["elements_before"].get<int>());
+  EXPECT_EQ(j["elements"].get<int>(), j["refinement_passes"].back()["elements_after"].get<int>());
+  // The PLY is the refined mesh.
+  EXPECT_NE(slurp(ply).find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
+
+  r = run("render --adaptive --max-edge 150 --until 0.02 --wireframe --size 64x64 --out " + dir.path("a.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("trace --adaptive --max-edge 150 --until 0.02 --size 32x32 --out " + dir.path("t.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("radiosity: "), std::string::npos) << r.out;
+
+  // A minimum edge the mesher cannot honour is a clear error, not a hang.
+  r = run("solve --adaptive --max-edge 150 --min-edge 0.01");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--min-edge"), std::string::npos) << r.err;
+}
+
 TEST(Cli, SolveStopsAtTheShotLimitAndComparesWithTheReference) {
   scratch_dir dir;
   const std::string stats = dir.path("stats.json");
