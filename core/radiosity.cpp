@@ -191,7 +191,7 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
   std::vector<rgb> lights;
   if (!state.source->lights.empty() && state.lights_shot) {
     std::uint64_t rays = 0;
-    lights = point_light_radiosity(*state.source, mesh, context, rays);
+    lights = point_light_radiosity(*state.source, mesh, context, rays, old_vertices);
     state.stats.rays += rays;
   }
   for (std::size_t i = 0; i < added.size(); ++i) {

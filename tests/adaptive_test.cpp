@@ -237,6 +237,38 @@ TEST(Adaptive, ConvergesToTheReferenceSolutionOnTheRefinedMesh) {
   EXPECT_LT(worst, 1e-9);
 }
 
+TEST(Adaptive, NewVerticesGetThePointLightsDirectLight) {
+  // A floor under a point light (and facing a dim emitter so there is
+  // something to shoot): after refining, every vertex, new or old, holds the
+  // light's exact direct term rho I cos / r^2.
+  scene s;
+  const int grey = add_material(s, rgb(0.5));
+  const int glow = add_material(s, rgb(0.0), rgb(0.01));
+  add_polygon(s, {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, grey);
+  add_polygon(s, {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}}, glow);
+  s.lights.push_back({vec3(0.3, 1.0, -0.2), rgb(2.0)});
+  const patch_mesh mesh = mesh_of(s, 0.5, 0.0);
+  auto state = make_radiosity_state(s, mesh, {});
+  ASSERT_TRUE(step_radiosity(*state));  // the point light first
+  std::vector<int> marked;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    if (mesh.element_surfaces[e] == 0) marked.push_back(int(e));
+  std::string error;
+  std::size_t added = 0;
+  ASSERT_TRUE(refine_radiosity(*state, marked, 0.01, error, &added)) << error;
+  ASSERT_GT(added, 0u);
+  const patch_mesh& refined = *state->mesh;
+  for (std::size_t v = 0; v < refined.vertex_count(); ++v) {
+    if (refined.vertex_surfaces[v] != 0) continue;
+    const vec3 to_light = s.lights[0].position - refined.receive_points[v];
+    const double r2 = glm::dot(to_light, to_light);
+    const double exact = 0.5 * 2.0 * (to_light.y / std::sqrt(r2)) / r2;
+    EXPECT_NEAR(state->direct[v].g, exact, 1e-12 * exact) << v;
+    EXPECT_NEAR(state->radiosity[v].g, exact, 1e-12 * exact) << v;
+  }
+  EXPECT_LT(balance_error(state->balance), 1e-12);
+}
+
 TEST(Adaptive, UniformLightWithoutShadowsDoesNotRefine) {
   const scene s = furnace(0.5);
   const patch_mesh mesh = mesh_of(s, 0.5, 1.0, default_min_edge(0.5));
