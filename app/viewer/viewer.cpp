@@ -146,7 +146,7 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
     worker.load(initial, solver);
     if (options.start_paused) worker.pause();
     // Frame and upload timings, reported after a scripted run.
-    double frame_ms_sum = 0.0, upload_ms_sum = 0.0;
+    double frame_ms_sum = 0.0, upload_ms_sum = 0.0, upload_ms_max = 0.0;
     int frames_timed = 0, uploads = 0;
     panel_state panel;
     panel.scene_path = initial.source;
@@ -199,8 +199,10 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
         const auto upload_start = std::chrono::steady_clock::now();
         renderer.update(*view->solution);
         glFinish();  // llvmpipe copies on the CPU: finish so the time is the upload's
-        upload_ms_sum +=
+        const double upload_ms =
             1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - upload_start).count();
+        upload_ms_sum += upload_ms;
+        upload_ms_max = std::max(upload_ms_max, upload_ms);  // a refined mesh's upload, with adaptive meshing
         ++uploads;
         uploaded_version = view->solution->version;
       }
@@ -364,10 +366,10 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
           const std::shared_ptr<const worker_view> last = worker.latest();
           std::printf(
               "view: %dx%d, %zu triangles (%zu as meshed), %d frames: %.2f ms per frame (%.1f fps); radiosity upload "
-              "%.3f ms (mean of %d)\n",
+              "%.3f ms (mean of %d, largest %.2f ms)\n",
               width, height, last->mesh ? last->mesh->element_count() : 0, last->meshed_elements, frames_timed,
               frame_ms_sum / frames_timed, 1000.0 * frames_timed / frame_ms_sum,
-              uploads ? upload_ms_sum / uploads : 0.0, uploads);
+              uploads ? upload_ms_sum / uploads : 0.0, uploads, upload_ms_max);
         }
         if (scripted_end && options.exit_after) glfwSetWindowShouldClose(window, GLFW_TRUE);
       }
