@@ -234,7 +234,9 @@ void add_solver_options(CLI::App& command, solver_options& o) {
   command.add_option("--tolerance", o.tolerance, "adaptive: split where vertex radiosities differ by this fraction")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command.add_option("--min-edge", o.min_edge, "adaptive: shortest edge a split may make (default: max edge / 8)")
+  command
+      .add_option("--min-edge", o.min_edge,
+                  "adaptive: elements whose longest edge is at most this are not split (default: max edge / 8)")
       ->check(CLI::PositiveNumber);
 }
 
