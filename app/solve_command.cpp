@@ -67,8 +67,6 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   });
   const radiosity_stats& st = state->stats;
   const power_balance& pb = state->balance;
-  const double imbalance =
-      channel_sum(pb.emitted + pb.received + pb.refined - pb.shot - pb.unshot) / channel_sum(pb.emitted + pb.received);
   const patch_mesh& solved = *state->mesh;  // refined, with --adaptive
   nlohmann::json passes = nlohmann::json::array();
   for (const refinement_pass& pass : state->adaptive.history) {
@@ -93,7 +91,7 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
               static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
               static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
-              std::abs(imbalance));
+              balance_error(pb));
 
   nlohmann::json stats = {
       {"scene", s.source},

@@ -77,11 +77,6 @@ struct vertex_judge {
   }
 };
 
-double balance_error(const power_balance& b) {
-  const double in = channel_sum(b.emitted + b.received);
-  return in > 0.0 ? std::abs(channel_sum(b.emitted + b.received + b.refined - b.shot - b.unshot)) / in : 0.0;
-}
-
 bool all_emission_shot(const radiosity_state& state) {
   if (!state.lights_shot) return false;
   return std::all_of(state.unshot_emission.begin(), state.unshot_emission.end(),

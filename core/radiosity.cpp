@@ -239,6 +239,11 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
   return true;
 }
 
+double balance_error(const power_balance& b) {
+  const double in = channel_sum(b.emitted + b.received);
+  return in > 0.0 ? std::abs(channel_sum(b.emitted + b.received + b.refined - b.shot - b.unshot)) / in : 0.0;
+}
+
 rgb ambient_radiosity(const radiosity_state& state) {
   const patch_mesh& mesh = *state.mesh;
   rgb reflectance(0.0), unshot(0.0);

@@ -47,6 +47,10 @@ struct power_balance {
   rgb refined{0.0};
 };
 
+// |emitted + received + refined - shot - unshot| / (emitted + received),
+// over all channels: 0 to round-off at every step (0 before any power).
+double balance_error(const power_balance& b);
+
 // A shooter that has shot, with all the radiosity it has shot so far: what
 // a vertex added later gathers from, F(v, shooter) x radiosity, so that
 // every shot made is accounted for exactly.

@@ -20,6 +20,7 @@ namespace {
 using testing::add_closed_box;
 using testing::add_material;
 using testing::add_polygon;
+using testing::furnace;
 
 scene load(const std::string& path) {
   scene s;
@@ -50,11 +51,6 @@ radiosity_params adaptive(double tolerance) {
   p.adaptive.enabled = true;
   p.adaptive.tolerance = tolerance;
   return p;
-}
-
-double balance_error(const power_balance& b) {
-  return std::abs(channel_sum(b.emitted + b.received + b.refined - b.shot - b.unshot)) /
-         channel_sum(b.emitted + b.received);
 }
 
 // Connected pieces of the mesh (vertices linked by elements): a smooth
@@ -174,13 +170,6 @@ TEST(Adaptive, SolvedCornellMeshIsConformingWithItsAreaKept) {
       longest = std::max(longest, glm::length(refined.positions[t[(k + 1) % 3]] - refined.positions[t[k]]));
     EXPECT_GE(longest, 0.5 * default_min_edge(150.0) - 1e-9);
   }
-}
-
-scene furnace(double rho) {
-  scene s;
-  const int m = add_material(s, rgb(rho), rgb(1.0));
-  add_closed_box(s, vec3(-1.0), vec3(1.0), m);
-  return s;
 }
 
 TEST(Adaptive, RefinedFurnaceIsStillExact) {

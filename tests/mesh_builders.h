@@ -42,4 +42,13 @@ inline void add_closed_box(scene& s, vec3 lo, vec3 hi, int material) {
   for (const auto& f : faces) add_polygon(s, {c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, material);
 }
 
+// The white furnace: the inside of the box [-1, 1]^3, every face emitting
+// Ke = 1 and reflecting rho, so B = pi / (1 - rho) everywhere.
+inline scene furnace(double rho) {
+  scene s;
+  const int m = add_material(s, rgb(rho), rgb(1.0));
+  add_closed_box(s, vec3(-1.0), vec3(1.0), m);
+  return s;
+}
+
 }  // namespace bounce::testing

@@ -19,6 +19,7 @@ using std::numbers::pi;
 using testing::add_closed_box;
 using testing::add_material;
 using testing::add_polygon;
+using testing::furnace;
 
 patch_mesh mesh_of(const scene& s, double max_edge) {
   patch_mesh mesh;
@@ -45,13 +46,6 @@ scene cornell(double scale = 1.0) {
   EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
   for (surface& surf : s.surfaces)
     for (vec3& p : std::get<polygon_mesh>(surf.geometry).positions) p *= scale;
-  return s;
-}
-
-scene furnace(double rho) {
-  scene s;
-  int m = add_material(s, rgb(rho), rgb(1.0));
-  add_closed_box(s, vec3(-1.0), vec3(1.0), m);
   return s;
 }
 
