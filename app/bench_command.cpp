@@ -54,16 +54,16 @@ const bench_scene& find_scene(const std::string& name) {
 // One run of the suite: a scene, a solver and its setting.
 struct bench_case {
   std::string scene;
-  bench_solver solver = bench_solver::progressive;
-  std::string method = "raycast";  // raycast | hemicube (progressive, reference)
-  int shadow_rays = 16;
-  int hemicube_resolution = 256;
-  double max_edge = 0.0;      // scene units
-  double patch_factor = 4.0;  // patch edge = this x max edge; 0: elements shoot
-  double until = 1e-3;
-  double max_seconds = 10.0;
-  bool growth = false;     // timings and memory only, for the growth with element count
-  double tolerance = 0.0;  // > 0: adaptive meshing with this tolerance (progressive)
+  bench_solver kind = bench_solver::progressive;
+  // Mesh (patch_edge: 0, elements shoot), form factors, adaptive meshing, stop.
+  solver_settings settings = [] {
+    solver_settings d;
+    d.patch_edge = 0.0;
+    d.stop.unshot_fraction = 1e-3;
+    d.stop.seconds = 10.0;
+    return d;
+  }();
+  bool growth = false;  // timings and memory only, for the growth with element count
 };
 
 struct suite_plan {
@@ -72,15 +72,32 @@ struct suite_plan {
   int reference_spp = 1024;  // path-traced reference
 };
 
+// A progressive run: `rays` shadow rays (raycast) or a hemicube of
+// `hemicube` pixels, at `edge`, patches of `patch_factor` x edge (0:
+// elements shoot).
+bench_case progressive_case(const std::string& scene, form_factor_method method, int rays, int hemicube, double edge,
+                            double patch_factor, double until, double max_seconds) {
+  bench_case c;
+  c.scene = scene;
+  c.settings.form_factors.method = method;
+  c.settings.form_factors.shadow_rays = rays;
+  c.settings.form_factors.hemicube_resolution = hemicube;
+  c.settings.max_edge = edge;
+  c.settings.patch_edge = patch_factor * edge;
+  c.settings.stop.unshot_fraction = until;
+  c.settings.stop.seconds = max_seconds;
+  return c;
+}
+
 // Progressive runs of one scene: every method setting at every density.
 void add_progressive(suite_plan& plan, const std::string& scene, std::initializer_list<double> edges,
                      std::initializer_list<int> rays, std::initializer_list<int> hemicubes, double max_seconds,
                      double until = 1e-3) {
   for (double edge : edges) {
     for (int r : rays)
-      plan.cases.push_back({scene, bench_solver::progressive, "raycast", r, 256, edge, 4.0, until, max_seconds});
+      plan.cases.push_back(progressive_case(scene, form_factor_method::raycast, r, 256, edge, 4.0, until, max_seconds));
     for (int h : hemicubes)
-      plan.cases.push_back({scene, bench_solver::progressive, "hemicube", 16, h, edge, 4.0, until, max_seconds});
+      plan.cases.push_back(progressive_case(scene, form_factor_method::hemicube, 16, h, edge, 4.0, until, max_seconds));
   }
 }
 
@@ -90,25 +107,33 @@ void add_adaptive(suite_plan& plan, std::initializer_list<double> edges, std::in
                   double max_seconds, double patch_factor = 0.0) {
   for (double edge : edges)
     for (double tolerance : tolerances) {
-      bench_case c{"cornell", bench_solver::progressive, "raycast", 16, 256, edge, patch_factor, 1e-3, max_seconds};
-      c.tolerance = tolerance;
+      bench_case c =
+          progressive_case("cornell", form_factor_method::raycast, 16, 256, edge, patch_factor, 1e-3, max_seconds);
+      c.settings.adaptive.enabled = true;
+      c.settings.adaptive.tolerance = tolerance;
       plan.cases.push_back(c);
     }
 }
 
 void add_reference(suite_plan& plan, const std::string& scene, double edge) {
-  plan.cases.push_back({scene, bench_solver::reference, "raycast", 16, 256, edge, 0.0});
+  bench_case c;
+  c.scene = scene;
+  c.kind = bench_solver::reference;
+  c.settings.max_edge = edge;
+  plan.cases.push_back(c);
 }
 
 void add_path(suite_plan& plan, const std::string& scene, double max_seconds) {
-  bench_case c{scene, bench_solver::path_tracer};
-  c.max_seconds = max_seconds;
+  bench_case c;
+  c.scene = scene;
+  c.kind = bench_solver::path_tracer;
+  c.settings.stop.seconds = max_seconds;
   plan.cases.push_back(c);
 }
 
 void add_growth(suite_plan& plan, std::initializer_list<double> edges, double max_seconds) {
   for (double edge : edges) {
-    bench_case c{"cornell", bench_solver::progressive, "raycast", 16, 256, edge, 4.0, 0.01, max_seconds};
+    bench_case c = progressive_case("cornell", form_factor_method::raycast, 16, 256, edge, 4.0, 0.01, max_seconds);
     c.growth = true;
     plan.cases.push_back(c);
   }
@@ -142,7 +167,7 @@ suite_plan make_suite(const std::string& suite) {
     add_progressive(plan, "cornell", {100, 60, 40, 30}, {16}, {}, 25.0);
     // 15 mm given the time to converge (to 1e-3 unshot: about 100 s), so
     // that the best uniform error is the mesh's, not the time limit's.
-    plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 16, 256, 15, 4.0, 1e-3, 150.0});
+    plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 16, 256, 15, 4.0, 1e-3, 150.0));
     add_adaptive(plan, {100, 60}, {0.5, 1.0}, 40.0);
     plan.picture_size = 128;
     plan.reference_spp = 4096;
@@ -154,7 +179,7 @@ suite_plan make_suite(const std::string& suite) {
   add_progressive(plan, "cornell", {40}, {4, 16}, {}, 25.0);  // 40 mm: the scene's default element size
   add_progressive(plan, "cornell", {60}, {}, {64, 128, 256}, 25.0);
   add_progressive(plan, "cornell", {30}, {}, {128}, 25.0);
-  plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 16, 256, 60, 0.0, 1e-3, 25.0});
+  plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 16, 256, 60, 0.0, 1e-3, 25.0));
   add_reference(plan, "cornell", 100);
   add_reference(plan, "cornell", 60);
   add_path(plan, "cornell", 40.0);
@@ -170,7 +195,7 @@ suite_plan make_suite(const std::string& suite) {
   add_reference(plan, "sphere", 0.5);
   add_progressive(plan, "squares-perpendicular", {0.1, 0.05}, {1, 16}, {64, 256}, 10.0);
   add_progressive(plan, "squares-parallel", {0.1, 0.05}, {16}, {256}, 10.0);
-  plan.cases.push_back({"cornell", bench_solver::progressive, "raycast", 4, 256, 15, 4.0, 1e-3, 60.0});
+  plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 4, 256, 15, 4.0, 1e-3, 60.0));
   add_growth(plan, {70, 30, 15, 7.5}, 90.0);
   plan.picture_size = 128;
   plan.reference_spp = 4096;
@@ -189,19 +214,24 @@ const char* solver_name(bench_solver s) {
   return "";
 }
 
+std::string method_label(const bench_case& c) {
+  return c.kind == bench_solver::path_tracer ? "path" : std::string(name_of(c.settings.form_factors.method));
+}
+
 // The label of a curve: its method with the setting that matters for it.
 std::string curve_label(const bench_case& c, const std::string& curve_method) {
   char buffer[160];
-  if (c.solver == bench_solver::path_tracer) return "path tracer";
+  if (c.kind == bench_solver::path_tracer) return "path tracer";
+  const form_factor_params& ff = c.settings.form_factors;
   std::string setting;
-  if (c.solver == bench_solver::progressive)
-    setting =
-        c.method == "hemicube" ? " " + std::to_string(c.hemicube_resolution) : " " + std::to_string(c.shadow_rays);
+  if (c.kind == bench_solver::progressive)
+    setting = " " + std::to_string(ff.method == form_factor_method::hemicube ? ff.hemicube_resolution : ff.shadow_rays);
   char adaptive[48] = "";
-  if (c.tolerance > 0.0) std::snprintf(adaptive, sizeof adaptive, ", adaptive %g", c.tolerance);
-  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s%s", setting.c_str(), c.max_edge,
-                c.solver == bench_solver::progressive && c.patch_factor == 0.0 ? ", element shooters" : "", adaptive,
-                c.growth ? ", growth" : "");
+  if (c.settings.adaptive.enabled)
+    std::snprintf(adaptive, sizeof adaptive, ", adaptive %g", c.settings.adaptive.tolerance);
+  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s%s", setting.c_str(), c.settings.max_edge,
+                c.kind == bench_solver::progressive && c.settings.patch_edge == 0.0 ? ", element shooters" : "",
+                adaptive, c.growth ? ", growth" : "");
   std::string base = curve_method;
   const std::size_t plus = base.find(" + ");
   const std::string suffix = plus == std::string::npos ? "" : base.substr(plus);
@@ -261,20 +291,9 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
     return exit_input_error;
   }
   bench_setting setting;
-  setting.solver = c.solver;
-  setting.form_factors.method = c.method == "hemicube" ? form_factor_method::hemicube : form_factor_method::raycast;
-  setting.form_factors.shadow_rays = c.shadow_rays;
-  setting.form_factors.hemicube_resolution = c.hemicube_resolution;
-  setting.mesher.max_edge = c.max_edge;
-  setting.mesher.patch_edge = c.patch_factor * c.max_edge;
-  setting.until = c.until;
-  setting.max_seconds = c.max_seconds;
+  setting.kind = c.kind;
+  setting.solver = c.settings;
   setting.measure_error = !c.growth;
-  if (c.tolerance > 0.0) {
-    setting.adaptive.enabled = true;
-    setting.adaptive.tolerance = c.tolerance;
-    setting.mesher.a_priori_min_edge = default_min_edge(c.max_edge);
-  }
 
   bench_truth truth;
   truth.exact = find_scene(c.scene).exact;
@@ -307,13 +326,13 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
   json j = {{"index", index},
             {"scene", c.scene},
             {"truth", truth.exact == exact_kind::none ? "path-traced picture" : "closed form"},
-            {"solver", solver_name(c.solver)},
-            {"method", c.solver == bench_solver::path_tracer ? "path" : c.method},
-            {"shadow_rays", c.shadow_rays},
-            {"hemicube_resolution", c.hemicube_resolution},
-            {"max_edge", c.max_edge},
-            {"patch_edge", c.patch_factor * c.max_edge},
-            {"adaptive_tolerance", c.tolerance},
+            {"solver", solver_name(c.kind)},
+            {"method", method_label(c)},
+            {"shadow_rays", c.settings.form_factors.shadow_rays},
+            {"hemicube_resolution", c.settings.form_factors.hemicube_resolution},
+            {"max_edge", c.settings.max_edge},
+            {"patch_edge", c.settings.patch_edge},
+            {"adaptive_tolerance", c.settings.adaptive.enabled ? c.settings.adaptive.tolerance : 0.0},
             {"growth", c.growth},
             {"elements", r.elements},
             {"vertices", r.vertices},
@@ -471,7 +490,7 @@ int run_bench_command(const bench_options& options) {
   for (std::size_t i = 0; i < plan.cases.size(); ++i) {
     const bench_case& c = plan.cases[i];
     std::printf("bench: [%zu/%zu] %-22s %-11s %-8s edge %-6g ...", i + 1, plan.cases.size(), c.scene.c_str(),
-                solver_name(c.solver), c.method.c_str(), c.max_edge);
+                solver_name(c.kind), method_label(c).c_str(), c.settings.max_edge);
     std::fflush(stdout);
     const child_usage usage = run_child(
         {"bounce", "bench", "--suite", options.suite, "--out", options.out_dir, "--run-case", std::to_string(i)});
@@ -485,14 +504,14 @@ int run_bench_command(const bench_options& options) {
       ++failures;
       j = {{"index", i},
            {"scene", c.scene},
-           {"solver", solver_name(c.solver)},
-           {"method", c.method},
-           {"max_edge", c.max_edge},
+           {"solver", solver_name(c.kind)},
+           {"method", method_label(c)},
+           {"max_edge", c.settings.max_edge},
            {"growth", c.growth},
            {"elements", 0},
            {"error", "the run failed (exit status " + std::to_string(usage.status) + ")"},
            {"curves", json::array()}};
-    } else if (!j["error"].get<std::string>().empty() && c.solver != bench_solver::reference) {
+    } else if (!j["error"].get<std::string>().empty() && c.kind != bench_solver::reference) {
       ++failures;  // only the matrix solver may decline a run (a mesh too large for it)
     }
     j["wall_seconds"] = usage.wall_seconds;

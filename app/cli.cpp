@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -204,38 +205,46 @@ std::string apply_camera_options(const camera_options& options, camera& view) {
   return {};
 }
 
-void add_solver_options(CLI::App& command, solver_options& o) {
-  command.add_option("--method", o.method, "form-factor method")
-      ->check(CLI::IsMember({"raycast", "hemicube"}))
-      ->capture_default_str();
+void add_solver_options(CLI::App& command, solver_settings& o) {
+  std::map<std::string, form_factor_method> methods;
+  for (const auto& m : form_factor_method_names()) methods.emplace(std::string(m.name), m.method);
+  command.add_option("--method", o.form_factors.method, "form-factor method")
+      ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
+      ->default_str(std::string(name_of(o.form_factors.method)));
   command.add_option("--max-edge", o.max_edge, "longest element edge, scene units (default: diagonal/24)")
       ->check(CLI::PositiveNumber);
-  command.add_option("--until", o.until, "stop when the unshot power fraction falls below this")
+  command.add_option("--until", o.stop.unshot_fraction, "stop when the unshot power fraction falls below this")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  command.add_option("--max-shots", o.max_shots, "stop after this many shots")->check(CLI::NonNegativeNumber);
-  command.add_option("--time", o.seconds, "stop after this many seconds")->check(CLI::NonNegativeNumber);
+  command.add_option("--max-shots", o.stop.max_shots, "stop after this many shots")->check(CLI::NonNegativeNumber);
+  command.add_option("--time", o.stop.seconds, "stop after this many seconds of solving")
+      ->check(CLI::NonNegativeNumber);
   command
       .add_option("--patch-edge", o.patch_edge,
                   "size of the shooting patches over the elements (substructuring); default 4 x max edge, "
                   "0: every element shoots (exact)")
       ->check(CLI::NonNegativeNumber);
-  command.add_flag("--full-rays", o.full_rays, "raycast: cast every shadow ray, without the 2x2 visibility probe");
-  command.add_option("--rays", o.shadow_rays, "raycast: shadow rays per receiver and shooter (rounded up to a square)")
+  command.add_flag_callback(
+      "--full-rays", [&o] { o.form_factors.adaptive_rays = false; },
+      "raycast: cast every shadow ray, without the 2x2 visibility probe");
+  command
+      .add_option("--rays", o.form_factors.shadow_rays,
+                  "raycast: shadow rays per receiver and shooter (rounded up to a square)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  command.add_option("--hemicube", o.hemicube_resolution, "hemicube: resolution of the top face")
+  command.add_option("--hemicube", o.form_factors.hemicube_resolution, "hemicube: resolution of the top face")
       ->check(CLI::Range(8, 4096))
       ->capture_default_str();
-  command.add_option("--stats", o.stats_path, "write solver statistics as JSON to this file");
-  command.add_flag("--adaptive", o.adaptive,
+  command.add_flag("--adaptive", o.adaptive.enabled,
                    "adaptive meshing: refine at contacts and near emitters, then where the radiosity changes "
                    "and along shadow edges while solving");
-  command.add_option("--tolerance", o.tolerance, "adaptive: split where vertex radiosities differ by this fraction")
+  command
+      .add_option("--tolerance", o.adaptive.tolerance,
+                  "adaptive: split where vertex radiosities differ by this fraction")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command
-      .add_option("--min-edge", o.min_edge,
+      .add_option("--min-edge", o.adaptive.min_edge,
                   "adaptive: elements whose longest edge is at most this are not split (default: max edge / 8)")
       ->check(CLI::PositiveNumber);
 }
@@ -267,7 +276,7 @@ int run_cli(int argc, char** argv) {
     const char* help;
     CLI::App* app = nullptr;
     std::string scene;
-    solver_options solver;
+    solver_settings solver;
     camera_options camera;
   };
   solving_command commands[] = {
@@ -297,6 +306,7 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::IsMember({"srgb", "filmic"}))
       ->capture_default_str();
   render->add_flag("--wireframe", render_extra.wireframe, "draw element edges");
+  render->add_option("--stats", render_extra.stats_path, "write solver statistics as JSON to this file");
   render->add_flag("--ambient", render_extra.ambient, "add the ambient term of the unshot power (display only)");
   render->add_flag("--panel", render_extra.panel, "draw the ImGui panel over the view, as in the window");
   render->add_option("--colours", render_extra.colours, "radiance, or false colour of unshot power or element size")
@@ -317,8 +327,11 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::Range(0, 16));
   trace_options trace_extra;
   add_trace_options(*commands[2].app, trace_extra);
+  commands[2].app->add_option("--stats", trace_extra.stats_path,
+                              "write trace statistics (and the radiosity pass's) as JSON to this file");
   solve_options solve_extra;
   commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
+  commands[3].app->add_option("--stats", solve_extra.stats_path, "write solver statistics as JSON to this file");
   commands[3].app->add_flag("--reference", solve_extra.reference,
                             "also solve the full matrix (small scenes) and report the difference");
   commands[3].app->add_flag("--ray-baseline", solve_extra.ray_baseline,
@@ -377,9 +390,9 @@ int run_cli(int argc, char** argv) {
   scene s;
   if (!load_for_command("", nullptr, s)) return exit_input_error;
   const char* display = std::getenv("DISPLAY");
-  if (display && *display) return run_viewer(s, solver_options{}, viewer_options{});
+  if (display && *display) return run_viewer(s, solver_settings{}, viewer_options{});
   std::cout << "bounce: no display; rendering headless\n";
-  return run_render(s, solver_options{}, render_options{});
+  return run_render(s, solver_settings{}, render_options{});
 }
 
 }  // namespace bounce

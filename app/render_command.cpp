@@ -1,5 +1,6 @@
 #include "render_command.h"
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -12,6 +13,7 @@
 #include "panel.h"
 #include "patch_mesh.h"
 #include "radiosity.h"
+#include "solver_stats.h"
 
 namespace bounce {
 namespace {
@@ -27,13 +29,15 @@ std::vector<unsigned char> drop_alpha(const std::vector<unsigned char>& rgba) {
 
 }  // namespace
 
-int run_render(const scene& s, const solver_options& solver, const render_options& options) {
+int run_render(const scene& s, const solver_settings& solver, const render_options& options) {
   patch_mesh mesh;
   std::string error;
-  if (!make_patch_mesh(s, to_mesher_params(solver, s), mesh, error)) {
+  const auto mesh_start = std::chrono::steady_clock::now();
+  if (!make_patch_mesh(s, mesher_params_for(solver, s), mesh, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
     return exit_input_error;
   }
+  const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count();
   headless::offscreen_view view(s.view.width, s.view.height);
   if (!view.ok()) {
     std::fprintf(stderr, "error: %s\n", view.error().c_str());
@@ -112,10 +116,10 @@ int run_render(const scene& s, const solver_options& solver, const render_option
       return exit_input_error;
     }
   }
-  state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
+  state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
   bool frames_ok = true;
   std::size_t frames = 0;
-  run_radiosity(*state, to_stop_criterion(solver), [&](const radiosity_state& st) {
+  run_radiosity(*state, solver.stop, [&](const radiosity_state& st) {
     if (options.panel) history.push_back({st.stats.seconds, st.stats.unshot_fraction});
     if (options.frames_dir.empty() || !frames_ok || st.stats.shots % std::uint64_t(options.frame_every) != 0) return;
     view.renderer().update(*make_snapshot(st));
@@ -143,6 +147,13 @@ int run_render(const scene& s, const solver_options& solver, const render_option
     std::printf("wrote %s (linear radiance)\n", options.pfm_path.c_str());
   }
   if (frames) std::printf("wrote %zu frames to %s\n", frames, options.frames_dir.c_str());
+  if (!options.stats_path.empty()) {
+    if (!write_stats(options.stats_path, solver_stats_json(s, solver, mesh, *state, mesh_seconds), error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return exit_input_error;
+    }
+    std::printf("wrote %s (statistics)\n", options.stats_path.c_str());
+  }
   return exit_ok;
 }
 

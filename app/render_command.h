@@ -19,8 +19,9 @@ struct render_options {
   bool ambient = false;
   bool panel = false;                // draw the ImGui panel over the view, as the window shows it
   std::string colours = "radiance";  // radiance | unshot | size (false colour)
+  std::string stats_path;            // --stats: solver statistics as JSON
 };
 
-int run_render(const scene& s, const solver_options& solver, const render_options& options);
+int run_render(const scene& s, const solver_settings& solver, const render_options& options);
 
 }  // namespace bounce

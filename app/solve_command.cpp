@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
@@ -15,24 +14,21 @@
 #include "ply.h"
 #include "radiosity.h"
 #include "reference_solver.h"
+#include "solver_stats.h"
 
 namespace bounce {
 namespace {
 
 using clock_type = std::chrono::steady_clock;
 
-nlohmann::json to_json(const rgb& c) {
-  return {c.r, c.g, c.b};
-}
-
 }  // namespace
 
-int run_solve(const scene& s, const solver_options& solver, const solve_options& extra) {
+int run_solve(const scene& s, const solver_settings& solver, const solve_options& extra) {
   const auto mesh_start = clock_type::now();
   patch_mesh mesh;
   std::string error;
   refinement_pass a_priori;
-  mesher_params mesher = to_mesher_params(solver, s);
+  mesher_params mesher = mesher_params_for(solver, s);
   mesher.a_priori_report = &a_priori;
   if (!make_patch_mesh(s, mesher, mesh, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
@@ -41,19 +37,19 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   const double mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
   std::printf("mesh: %zu elements, %zu vertices, %zu shooting patches (max edge %g) in %.3f s\n", mesh.element_count(),
               mesh.vertex_count(), mesh.patch_count(), mesh.max_edge, mesh_seconds);
-  if (solver.adaptive)
+  if (solver.adaptive.enabled)
     std::printf("a priori refinement: %zu marks at contacts, %zu near emitters; %zu -> %zu elements\n",
                 a_priori.contact, a_priori.emitter, a_priori.elements_before, a_priori.elements_after);
   if (mesh.nonmanifold_faces)
     std::fprintf(stderr, "warning: %zu non-manifold face(s) kept with vertices of their own\n", mesh.nonmanifold_faces);
 
-  auto state = make_radiosity_state(s, mesh, to_radiosity_params(solver));
+  auto state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
   constexpr std::size_t baseline_rays = 2'000'000;
   if (extra.ray_baseline)
     std::const_pointer_cast<occlusion_scene>(state->form_factors.occlusion)->record_segments(baseline_rays);
   auto last_print = clock_type::now();
   std::uint64_t shots_then = 0, rays_then = 0;
-  run_radiosity(*state, to_stop_criterion(solver), [&](const radiosity_state& st) {
+  run_radiosity(*state, solver.stop, [&](const radiosity_state& st) {
     const auto now = clock_type::now();
     const double dt = std::chrono::duration<double>(now - last_print).count();
     if (dt < 1.0) return;
@@ -68,24 +64,15 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
   const radiosity_stats& st = state->stats;
   const power_balance& pb = state->balance;
   const patch_mesh& solved = *state->mesh;  // refined, with --adaptive
-  nlohmann::json passes = nlohmann::json::array();
-  for (const refinement_pass& pass : state->adaptive.history) {
+  for (const refinement_pass& pass : state->adaptive.history)
     std::printf(
         "refinement at unshot %.3f%%: %zu marked by radiosity difference, %zu on shadow edges; %zu -> %zu elements "
         "(+%zu vertices) in %.3f s\n",
         100.0 * pass.unshot_fraction, pass.gradient, pass.shadow, pass.elements_before, pass.elements_after,
         pass.new_vertices, pass.seconds);
-    passes.push_back({{"unshot_fraction", pass.unshot_fraction},
-                      {"gradient_marks", pass.gradient},
-                      {"shadow_marks", pass.shadow},
-                      {"elements_before", pass.elements_before},
-                      {"elements_after", pass.elements_after},
-                      {"new_vertices", pass.new_vertices},
-                      {"seconds", pass.seconds}});
-  }
   if (!state->adaptive.error.empty())
     std::fprintf(stderr, "warning: refinement stopped: %s\n", state->adaptive.error.c_str());
-  if (solver.adaptive)
+  if (solver.adaptive.enabled)
     std::printf("adaptive mesh: %zu elements, %zu vertices (%zu elements before refinement while solving)\n",
                 solved.element_count(), solved.vertex_count(), mesh.element_count());
   std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
@@ -93,32 +80,11 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
               static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
               balance_error(pb));
 
-  nlohmann::json stats = {
-      {"scene", s.source},
-      {"method", solver.method},
-      {"max_edge", solved.max_edge},
-      {"elements", solved.element_count()},
-      {"vertices", solved.vertex_count()},
-      {"patches", solved.patch_count()},
-      {"adaptive", solver.adaptive},
-      {"refinement_passes", passes},
-      {"patch_edge", to_mesher_params(solver, s).patch_edge},
-      {"mesh_seconds", mesh_seconds},
-      {"shots", st.shots},
-      {"unshot_fraction", st.unshot_fraction},
-      {"seconds", st.seconds},
-      {"rays", st.rays},
-      {"power",
-       {{"emitted", to_json(pb.emitted)},
-        {"received", to_json(pb.received)},
-        {"shot", to_json(pb.shot)},
-        {"unshot", to_json(pb.unshot)},
-        {"refined", to_json(pb.refined)}}},
-  };
+  nlohmann::json stats = solver_stats_json(s, solver, mesh, *state, mesh_seconds);
 
   if (extra.reference) {
     reference_params rp;
-    rp.form_factors = to_radiosity_params(solver).form_factors;
+    rp.form_factors = solver.form_factors;
     reference_solution ref;
     if (!solve_reference(s, solved, rp, ref, error)) {
       std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
@@ -140,7 +106,7 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
                           {"seconds_gauss_seidel", ref.seconds_gauss_seidel},
                           {"max_relative_difference", difference}};
   }
-  if (extra.ray_baseline && solver.method != "raycast") {
+  if (extra.ray_baseline && solver.form_factors.method != form_factor_method::raycast) {
     std::printf("ray baseline: the hemicube casts no shadow rays\n");
   } else if (extra.ray_baseline) {
     // The same segments, one rtcOccluded1 call each, on all cores: Embree's
@@ -165,13 +131,9 @@ int run_solve(const scene& s, const solver_options& solver, const solve_options&
     stats["ray_baseline"] = {
         {"rays", segments.size()}, {"embree_mrays_per_second", raw}, {"solver_mrays_per_second", solver_rate}};
   }
-  if (!solver.stats_path.empty()) {
-    std::ofstream out(solver.stats_path);
-    out << stats.dump(2) << "\n";
-    if (!out) {
-      std::fprintf(stderr, "error: %s: cannot write statistics\n", solver.stats_path.c_str());
-      return exit_input_error;
-    }
+  if (!extra.stats_path.empty() && !write_stats(extra.stats_path, stats, error)) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return exit_input_error;
   }
   if (!extra.ply_path.empty()) {
     if (!write_ply(extra.ply_path, solved, state->radiosity, error)) {

@@ -17,6 +17,7 @@
 #include "radiosity_field.h"
 #include "ray_tracer.h"
 #include "scene_info.h"
+#include "solver_stats.h"
 
 namespace bounce {
 namespace {
@@ -26,17 +27,20 @@ using clock_type = std::chrono::steady_clock;
 struct solved {
   patch_mesh mesh;
   std::unique_ptr<radiosity_state> state;
+  double mesh_seconds = 0.0;
 };
 
 // Meshes and runs the progressive solver to the options' criterion.
-bool solve(const scene& s, const solver_options& solver, solved& out) {
+bool solve(const scene& s, const solver_settings& solver, solved& out) {
   std::string error;
-  if (!make_patch_mesh(s, to_mesher_params(solver, s), out.mesh, error)) {
+  const auto mesh_start = clock_type::now();
+  if (!make_patch_mesh(s, mesher_params_for(solver, s), out.mesh, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
     return false;
   }
-  out.state = make_radiosity_state(s, out.mesh, to_radiosity_params(solver));
-  run_radiosity(*out.state, to_stop_criterion(solver), [](const radiosity_state&) {});
+  out.mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
+  out.state = make_radiosity_state(s, out.mesh, radiosity_params_for(solver));
+  run_radiosity(*out.state, solver.stop, [](const radiosity_state&) {});
   return true;
 }
 
@@ -80,7 +84,7 @@ void add_trace_options(CLI::App& command, trace_options& options) {
       ->capture_default_str();
 }
 
-int run_trace(const scene& s, const solver_options& solver, const trace_options& options) {
+int run_trace(const scene& s, const solver_settings& solver, const trace_options& options) {
   trace_params params;
   params.method = options.integrator == "path" ? integrator::path : integrator::whitted;
   params.spp = options.spp;
@@ -106,7 +110,7 @@ int run_trace(const scene& s, const solver_options& solver, const trace_options&
     if (options.ambient) {
       params.ambient_irradiance = rgb(*options.ambient);
     } else {
-      solver_options coarse = solver;
+      solver_settings coarse = solver;
       coarse.max_edge = 2.0 * default_max_edge(s);
       if (!solve(s, coarse, pass)) return exit_input_error;
       params.ambient_irradiance = mean_indirect_irradiance(*pass.state);
@@ -163,6 +167,26 @@ int run_trace(const scene& s, const solver_options& solver, const trace_options&
   }
 
   std::string error;
+  if (!options.stats_path.empty()) {
+    nlohmann::json out = {{"trace",
+                           {{"integrator", options.integrator},
+                            {"width", img.width},
+                            {"height", img.height},
+                            {"spp", options.spp},
+                            {"primary_rays", stats.primary_rays},
+                            {"shadow_rays", stats.shadow_rays},
+                            {"secondary_rays", stats.secondary_rays},
+                            {"refined_pixels", stats.refined_pixels},
+                            {"seconds", stats.seconds},
+                            {"scene_build_seconds", build_seconds}}}};
+    // The radiosity pass, when the still used one (two-pass, or the coarse
+    // solution a one-pass ambient term came from).
+    if (pass.state) out["radiosity"] = solver_stats_json(s, solver, pass.mesh, *pass.state, pass.mesh_seconds);
+    if (!write_stats(options.stats_path, out, error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return exit_input_error;
+    }
+  }
   const std::vector<unsigned char> rows = to_srgb_rows(img, options.exposure);
   if (!write_png(options.png_path, img.width, img.height, 3, rows.data(), error)) {
     std::fprintf(stderr, "error: %s\n", error.c_str());

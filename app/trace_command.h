@@ -24,10 +24,11 @@ struct trace_options {
   std::uint64_t seed = 1;
   double exposure = 1.0;
   bool ray_baseline = false;  // also time bare closest-hit queries of the pixel-centre rays
+  std::string stats_path;     // --stats: trace (and radiosity pass) statistics as JSON
 };
 
 void add_trace_options(CLI::App& command, trace_options& options);
 
-int run_trace(const scene& s, const solver_options& solver, const trace_options& options);
+int run_trace(const scene& s, const solver_settings& solver, const trace_options& options);
 
 }  // namespace bounce

@@ -83,16 +83,12 @@ bool all_emission_shot(const radiosity_state& state) {
                      [](const rgb& u) { return u.r == 0.0 && u.g == 0.0 && u.b == 0.0; });
 }
 
-std::string method_name(const form_factor_params& p) {
-  return p.method == form_factor_method::hemicube ? "hemicube" : "raycast";
-}
-
 bench_result run_progressive(const scene& s, const bench_setting& setting, const bench_truth& truth) {
   bench_result result;
   run_clock clock;
   patch_mesh mesh;
-  if (!make_patch_mesh(s, setting.mesher, mesh, result.error)) return result;
-  auto state = make_radiosity_state(s, mesh, radiosity_params{setting.form_factors, setting.adaptive});
+  if (!make_patch_mesh(s, mesher_params_for(setting.solver, s), mesh, result.error)) return result;
+  auto state = make_radiosity_state(s, mesh, radiosity_params_for(setting.solver));
   result.setup_seconds = clock.wall();
   result.elements = mesh.element_count();
   result.vertices = mesh.vertex_count();
@@ -108,8 +104,9 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
         vertices = std::make_unique<vertex_judge>(s, truth.exact);
     });
   }
-  result.curves.push_back({method_name(setting.form_factors), {}});
-  if (pictures) result.curves.push_back({method_name(setting.form_factors) + " + two-pass", {}});
+  const std::string method(name_of(setting.solver.form_factors.method));
+  result.curves.push_back({method, {}});
+  if (pictures) result.curves.push_back({method + " + two-pass", {}});
 
   auto record = [&] {
     bench_point p;
@@ -147,7 +144,7 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
     more = step_radiosity(*state);
     const double t = clock.wall();
     if (std::isnan(result.first_picture_seconds) && all_emission_shot(*state)) result.first_picture_seconds = t;
-    const bool done = !more || state->stats.unshot_fraction <= setting.until || t >= setting.max_seconds;
+    const bool done = !more || stop_reached(*state, setting.solver.stop);
     if (done || t >= next_stop) {
       record();
       next_stop = std::max(t * stop_spacing, t + 1e-3);
@@ -164,13 +161,13 @@ bench_result run_reference(const scene& s, const bench_setting& setting, const b
   bench_result result;
   run_clock clock;
   patch_mesh mesh;
-  if (!make_patch_mesh(s, setting.mesher, mesh, result.error)) return result;
+  if (!make_patch_mesh(s, mesher_params_for(setting.solver, s), mesh, result.error)) return result;
   result.elements = mesh.element_count();
   result.vertices = mesh.vertex_count();
   result.patches = mesh.element_count();
   const double mesh_seconds = clock.wall();
   reference_params params;
-  params.form_factors = setting.form_factors;
+  params.form_factors = setting.solver.form_factors;
   reference_solution solution;
   if (!solve_reference(s, mesh, params, solution, result.error)) return result;
   result.setup_seconds = mesh_seconds + solution.seconds_matrix;
@@ -216,7 +213,7 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
   const double setup_cpu = clock.cpu();
   result.curves.push_back({"path", {}});
   double spent = 0.0;
-  for (int spp = 1; spp <= setting.path_max_spp && spent < setting.max_seconds; spp *= 2) {
+  for (int spp = 1; spp <= setting.path_max_spp && spent < setting.solver.stop.seconds; spp *= 2) {
     trace_params params;
     params.method = integrator::path;
     params.spp = spp;
@@ -293,7 +290,7 @@ picture_judge::verdict picture_judge::judge_solution(const patch_mesh& mesh, std
 }
 
 bench_result run_bench(const scene& s, const bench_setting& setting, const bench_truth& truth) {
-  switch (setting.solver) {
+  switch (setting.kind) {
     case bench_solver::progressive:
       return run_progressive(s, setting, truth);
     case bench_solver::reference:

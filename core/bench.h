@@ -17,6 +17,7 @@
 #include "patch_mesh.h"
 #include "ray_scene.h"
 #include "ray_tracer.h"
+#include "solver_settings.h"
 
 namespace bounce {
 
@@ -29,14 +30,17 @@ enum class bench_solver {
 };
 
 struct bench_setting {
-  bench_solver solver = bench_solver::progressive;
-  form_factor_params form_factors;
-  mesher_params mesher;       // resolved: max_edge > 0, patch_edge as meant
-  double until = 1e-3;        // progressive: stop at this unshot fraction ...
-  double max_seconds = 10.0;  // ... or after this long (progressive, path)
+  bench_solver kind = bench_solver::progressive;
+  // Mesh, form factors, adaptive meshing and the stop (progressive; the
+  // path tracer stops at stop.seconds too).
+  solver_settings solver = [] {
+    solver_settings d;
+    d.stop.unshot_fraction = 1e-3;
+    d.stop.seconds = 10.0;
+    return d;
+  }();
   bool measure_error = true;  // false: timings only (the growth runs)
   int path_max_spp = 1 << 14;
-  adaptive_params adaptive;  // progressive: adaptive meshing while solving
 };
 
 // The closed forms of accuracy.md that a scene's solution is compared with.

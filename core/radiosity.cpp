@@ -1,6 +1,7 @@
 #include "radiosity.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "point_lights.h"

@@ -16,7 +16,6 @@
 // to the reference solver's solution.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -26,6 +25,7 @@
 #include "adaptive.h"
 #include "form_factor.h"
 #include "patch_mesh.h"
+#include "solver_settings.h"
 
 namespace bounce {
 
@@ -116,13 +116,8 @@ bool step_radiosity(radiosity_state& state);
 bool refine_radiosity(radiosity_state& state, std::span<const int> marked, double min_edge, std::string& error,
                       std::size_t* new_vertices = nullptr);
 
-struct stop_criterion {
-  double unshot_fraction = 0.0;  // stop when at or below (0: no limit)
-  std::uint64_t max_shots = 0;   // 0: no limit
-  double seconds = 0.0;          // 0: no limit
-};
-
-// Steps until a criterion holds or nothing is left. `on_step` (may be
+// Steps until `stop` holds (counted from the solver's start, not from this
+// call: solver_settings.h) or nothing is left. `on_step` (may be
 // empty) runs after every step, e.g. to publish a snapshot.
 template <typename callback>
 void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step);
@@ -157,17 +152,7 @@ inline double channel_sum(const rgb& c) {
 
 template <typename callback>
 void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::uint64_t shots_at_start = state.stats.shots;
-  for (;;) {
-    if (stop.unshot_fraction > 0.0 && state.lights_shot && state.stats.unshot_fraction <= stop.unshot_fraction) return;
-    if (stop.max_shots > 0 && state.stats.shots - shots_at_start >= stop.max_shots) return;
-    if (stop.seconds > 0.0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= stop.seconds)
-      return;
-    if (!step_radiosity(state)) return;
-    on_step(state);
-  }
+  while (!stop_reached(state, stop) && step_radiosity(state)) on_step(state);
 }
 
 }  // namespace bounce

@@ -154,8 +154,9 @@ TEST(BenchExact, FurnaceAndSphereClosedForms) {
 TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
   const scene s = bench_scene("furnace.json");
   bench_setting setting;
-  setting.mesher = {0.5, 30.0, 0.0};
-  setting.until = 1e-4;
+  setting.solver.max_edge = 0.5;
+  setting.solver.patch_edge = 0.0;
+  setting.solver.stop.unshot_fraction = 1e-4;
   bench_truth truth;
   truth.exact = exact_kind::furnace;
   const bench_result r = run_bench(s, setting, truth);
@@ -177,8 +178,9 @@ TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
 TEST(BenchRun, ReferenceSolversAreExactOnTheFurnace) {
   const scene s = bench_scene("furnace_099.json");
   bench_setting setting;
-  setting.solver = bench_solver::reference;
-  setting.mesher = {0.5, 30.0, 0.0};
+  setting.kind = bench_solver::reference;
+  setting.solver.max_edge = 0.5;
+  setting.solver.patch_edge = 0.0;
   bench_truth truth;
   truth.exact = exact_kind::furnace;
   const bench_result r = run_bench(s, setting, truth);
@@ -198,9 +200,9 @@ TEST(BenchRun, PathTracerErrorHalvesPerFourTimesTheSamples) {
   truth.exclude_above = 0.5;
   truth.downsample = 1;
   bench_setting setting;
-  setting.solver = bench_solver::path_tracer;
+  setting.kind = bench_solver::path_tracer;
   setting.path_max_spp = 64;
-  setting.max_seconds = 100.0;
+  setting.solver.stop.seconds = 100.0;
   const bench_result r = run_bench(s, setting, truth);
   ASSERT_EQ(r.curves.size(), 1u);
   const auto& p = r.curves[0].points;

@@ -59,10 +59,34 @@ TEST(Cli, HelpListsEveryCommand) {
 TEST(Cli, SolvingCommandsShareOptions) {
   for (const char* command : {"view", "render", "trace", "solve"}) {
     run_result r = run(std::string(command) + " --help");
-    for (const char* option : {"--method", "--max-edge", "--until", "--max-shots", "--time", "--stats", "--eye",
-                               "--target", "--up", "--fov", "--size"})
+    for (const char* option :
+         {"--method", "--max-edge", "--until", "--max-shots", "--time", "--eye", "--target", "--up", "--fov", "--size"})
       EXPECT_NE(r.out.find(option), std::string::npos) << command << " " << option;
   }
+}
+
+// --stats is offered only where a file gets written, and every command that
+// offers it writes one; the window has no statistics file to write.
+TEST(Cli, StatsIsWrittenByEveryCommandThatOffersIt) {
+  scratch_dir dir;
+  const std::string fast = " --max-edge 150 --until 0.05 --size 16x16";
+  for (const char* command : {"solve", "render", "trace"}) {
+    const std::string stats = dir.path(std::string(command) + ".json");
+    const std::string out = std::string(command) == "solve" ? "" : " --out " + dir.path(std::string(command) + ".png");
+    run_result r = run(std::string(command) + fast + out + " --stats " + stats);
+    ASSERT_EQ(r.code, 0) << command << ": " << r.err;
+    nlohmann::json j = nlohmann::json::parse(slurp(stats), nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << command << ": " << slurp(stats);
+    const nlohmann::json& radiosity = std::string(command) == "trace" ? j["radiosity"] : j;
+    EXPECT_GT(radiosity["shots"].get<int>(), 0) << command;
+    EXPECT_GT(radiosity["elements"].get<int>(), 0) << command;
+    EXPECT_LE(radiosity["unshot_fraction"].get<double>(), 0.05) << command;
+    EXPECT_LT(radiosity["power_balance_error"].get<double>(), 1e-9) << command;
+    if (std::string(command) == "trace") {
+      EXPECT_EQ(j["trace"]["width"].get<int>(), 16);
+    }
+  }
+  EXPECT_EQ(run("view --stats " + dir.path("view.json")).code, 2);
 }
 
 TEST(Cli, InfoJsonOnTheCornellBox) {

@@ -21,10 +21,10 @@ scene cornell() {
   return s;
 }
 
-solver_options coarse(double until) {
-  solver_options o;
+solver_settings coarse(double until) {
+  solver_settings o;
   o.max_edge = 120;
-  o.until = until;
+  o.stop.unshot_fraction = until;
   return o;
 }
 
@@ -58,10 +58,22 @@ TEST(SolverWorker, PauseStepAndRestart) {
   worker.step();
   worker.wait_idle();
   EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 2);
+  // A restart while paused goes back to B = E and stays paused: no shot
+  // made, the history empty, every vertex at its emission.
   worker.restart();
-  worker.pause();
   worker.wait_idle();
-  EXPECT_LT(worker.latest()->solution->stats.shots, paused_at + 2 + 1000);
+  const auto restarted = worker.latest();
+  EXPECT_EQ(restarted->solution->stats.shots, 0u);
+  EXPECT_TRUE(restarted->history.empty());
+  EXPECT_FALSE(restarted->running);
+  for (std::size_t v = 0; v < restarted->mesh->vertex_count(); ++v) {
+    const glm::vec3 e(restarted->mesh->vertex_emission[v]);
+    EXPECT_EQ(restarted->solution->radiosity[v], e) << "vertex " << v;
+  }
+  // Running again from there makes the same first shots as the first run.
+  worker.step();
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest()->solution->stats.shots, 1u);
   EXPECT_EQ(worker.latest()->mesh_version, 1u);
 }
 

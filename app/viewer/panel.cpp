@@ -60,13 +60,16 @@ std::vector<float> resample_log(const std::vector<point>& history, double end, i
 
 }  // namespace
 
-std::string setting_key(const solver_options& o) {
+std::string setting_key(const solver_settings& o) {
   char key[200];
-  std::snprintf(key, sizeof key, "%s %d, edge %g, patches %g, until %g", o.method.c_str(),
-                o.method == "hemicube" ? o.hemicube_resolution : o.shadow_rays, o.max_edge, o.patch_edge, o.until);
+  const bool hemicube = o.form_factors.method == form_factor_method::hemicube;
+  std::snprintf(key, sizeof key, "%s %d, edge %g, patches %g, until %g",
+                std::string(name_of(o.form_factors.method)).c_str(),
+                hemicube ? o.form_factors.hemicube_resolution : o.form_factors.shadow_rays, o.max_edge, o.patch_edge,
+                o.stop.unshot_fraction);
   std::string text = key;
-  if (o.adaptive) {
-    std::snprintf(key, sizeof key, ", adaptive %g, min edge %g", o.tolerance, o.min_edge);
+  if (o.adaptive.enabled) {
+    std::snprintf(key, sizeof key, ", adaptive %g, min edge %g", o.adaptive.tolerance, o.adaptive.min_edge);
     text += key;
   }
   return text;
@@ -101,25 +104,30 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     float max_edge = float(state.solver.max_edge);
     ImGui::InputFloat("max edge (0: auto)", &max_edge, 0, 0, "%.4g");
     state.solver.max_edge = std::max(0.0f, max_edge);
-    int method = state.solver.method == "hemicube" ? 1 : 0;
-    ImGui::Combo("form factors", &method, "ray cast\0hemicube\0");
-    state.solver.method = method ? "hemicube" : "raycast";
-    if (method == 0)
-      ImGui::SliderInt("shadow rays", &state.solver.shadow_rays, 1, 64);
+    form_factor_params& ff = state.solver.form_factors;
+    if (ImGui::BeginCombo("form factors", std::string(name_of(ff.method)).c_str())) {
+      for (const auto& m : form_factor_method_names())
+        if (ImGui::Selectable(std::string(m.name).c_str(), m.method == ff.method)) ff.method = m.method;
+      ImGui::EndCombo();
+    }
+    if (ff.method == form_factor_method::raycast)
+      ImGui::SliderInt("shadow rays", &ff.shadow_rays, 1, 64);
     else
-      ImGui::SliderInt("hemicube", &state.solver.hemicube_resolution, 16, 512);
-    float until = float(std::log10(std::max(state.solver.until, 1e-12)));
+      ImGui::SliderInt("hemicube", &ff.hemicube_resolution, 16, 512);
+    stop_criterion& stop = state.solver.stop;
+    float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
     ImGui::SliderFloat("stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f");
-    state.solver.until = std::pow(10.0, double(until));
+    stop.unshot_fraction = std::pow(10.0, double(until));
     // Adaptive meshing: refine where the light changes (applies on re-mesh).
-    ImGui::Checkbox("adaptive meshing", &state.solver.adaptive);
-    if (state.solver.adaptive) {
-      float tolerance = float(state.solver.tolerance);
+    adaptive_params& adaptive = state.solver.adaptive;
+    ImGui::Checkbox("adaptive meshing", &adaptive.enabled);
+    if (adaptive.enabled) {
+      float tolerance = float(adaptive.tolerance);
       ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-      state.solver.tolerance = double(tolerance);
-      float min_edge = float(state.solver.min_edge);
+      adaptive.tolerance = double(tolerance);
+      float min_edge = float(adaptive.min_edge);
       ImGui::InputFloat("min edge (0: max edge / 8)", &min_edge, 0, 0, "%.4g");
-      state.solver.min_edge = std::max(0.0f, min_edge);
+      adaptive.min_edge = std::max(0.0f, min_edge);
     }
     if (ImGui::Button("Apply (re-mesh)")) act.apply_mesh = true;
     ImGui::SameLine();

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.h"
+#include "solver_settings.h"
 #include "error_tracker.h"
 #include "mesh_renderer.h"
 #include "solver_worker.h"
@@ -36,7 +36,7 @@ struct still_status {
 struct panel_state {
   std::string scene_path;
   std::vector<std::string> asset_scenes;  // offered in a list
-  solver_options solver;                  // mesh density, method and its settings, criterion
+  solver_settings solver;                 // mesh density, method and its settings, criterion
   gl::display_settings display;
   bool screenshot_with_panel = false;
   std::string screenshot_path = "bounce-screenshot.png";
@@ -62,7 +62,7 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
 
 // The solver setting a run is remembered under: method, its parameter,
 // element size and stopping point.
-std::string setting_key(const solver_options& options);
+std::string setting_key(const solver_settings& settings);
 
 // The keyboard shortcuts, shown in the help popup and handled by the window.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

@@ -10,7 +10,7 @@ struct solver_worker::command {
   enum class kind { load, load_file, pause, resume, step, restart, criterion } what;
   scene s;
   std::string path;
-  solver_options options;
+  solver_settings settings;
   stop_criterion criterion;
 };
 
@@ -36,19 +36,19 @@ void solver_worker::enqueue(std::unique_ptr<command> c) {
   wake_.notify_all();
 }
 
-void solver_worker::load(scene s, const solver_options& options) {
+void solver_worker::load(scene s, const solver_settings& settings) {
   auto c = std::make_unique<command>();
   c->what = command::kind::load;
   c->s = std::move(s);
-  c->options = options;
+  c->settings = settings;
   enqueue(std::move(c));
 }
 
-void solver_worker::load_file(const std::string& path, const solver_options& options) {
+void solver_worker::load_file(const std::string& path, const solver_settings& settings) {
   auto c = std::make_unique<command>();
   c->what = command::kind::load_file;
   c->path = path;
-  c->options = options;
+  c->settings = settings;
   enqueue(std::move(c));
 }
 
@@ -99,7 +99,7 @@ void solver_worker::handle(command& c) {
       auto s = std::make_shared<const scene>(std::move(c.s));
       auto mesh = std::make_shared<patch_mesh>();
       std::string error;
-      if (!make_patch_mesh(*s, to_mesher_params(c.options, *s), *mesh, error)) {
+      if (!make_patch_mesh(*s, mesher_params_for(c.settings, *s), *mesh, error)) {
         error_ = s->source + ": " + error;
         return;
       }
@@ -107,8 +107,8 @@ void solver_worker::handle(command& c) {
       state_.reset();
       scene_ = s;
       mesh_ = mesh;
-      state_ = make_radiosity_state(*scene_, *mesh_, to_radiosity_params(c.options));
-      criterion_ = to_stop_criterion(c.options);
+      state_ = make_radiosity_state(*scene_, *mesh_, radiosity_params_for(c.settings));
+      criterion_ = c.settings.stop;
       ++mesh_version_;
       history_.clear();
       error_.clear();
@@ -130,7 +130,6 @@ void solver_worker::handle(command& c) {
       if (state_) {
         restart_radiosity(*state_);
         history_.clear();
-        paused_ = false;
         exhausted_ = false;
       }
       break;
@@ -150,12 +149,7 @@ void solver_worker::publish() {
   v->history = history_;
   v->error = error_;
   if (state_) {
-    const radiosity_stats& st = state_->stats;
-    const bool by_fraction =
-        criterion_.unshot_fraction > 0 && state_->lights_shot && st.unshot_fraction <= criterion_.unshot_fraction;
-    const bool by_shots = criterion_.max_shots > 0 && st.shots >= criterion_.max_shots;
-    const bool by_time = criterion_.seconds > 0 && st.seconds >= criterion_.seconds;
-    v->converged = exhausted_ || by_fraction || by_shots || by_time;
+    v->converged = exhausted_ || stop_reached(*state_, criterion_);
     v->running = !paused_ && !v->converged;
   }
   std::atomic_store(&view_, std::shared_ptr<const worker_view>(std::move(v)));

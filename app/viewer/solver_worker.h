@@ -15,9 +15,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "cli.h"
 #include "patch_mesh.h"
 #include "radiosity.h"
+#include "scene.h"
+#include "solver_settings.h"
 
 namespace bounce {
 
@@ -46,14 +47,14 @@ class solver_worker {
   solver_worker(const solver_worker&) = delete;
   solver_worker& operator=(const solver_worker&) = delete;
 
-  // Meshes the scene with these options and starts solving at once.
-  void load(scene s, const solver_options& options);
+  // Meshes the scene with these settings and starts solving at once.
+  void load(scene s, const solver_settings& settings);
   // Loads a scene file (path) on the worker; errors arrive in the view.
-  void load_file(const std::string& path, const solver_options& options);
+  void load_file(const std::string& path, const solver_settings& settings);
   void pause();
   void resume();
   void step();     // one shot, then paused
-  void restart();  // back to B = E, running
+  void restart();  // back to B = E; running or paused as before
   void set_criterion(const stop_criterion& criterion);
 
   std::shared_ptr<const worker_view> latest() const { return std::atomic_load(&view_); }

@@ -75,7 +75,7 @@ trace_params still_params(const still_settings& settings) {
 
 }  // namespace
 
-int run_viewer(const scene& initial, const solver_options& solver, const viewer_options& options) {
+int run_viewer(const scene& initial, const solver_settings& solver, const viewer_options& options) {
   glfwSetErrorCallback(on_glfw_error);
   if (!glfwInit()) {
     std::fprintf(stderr, "error: no display for a window (GLFW could not start); use `bounce render` instead\n");
@@ -381,7 +381,10 @@ int run_viewer(const scene& initial, const solver_options& solver, const viewer_
       if (act.pause || keys.pause) worker.pause();
       if (act.resume || keys.resume) worker.resume();
       if (act.step || keys.step) worker.step();
-      if (act.restart || keys.restart) worker.restart();
+      if (act.restart || keys.restart) {
+        worker.restart();
+        worker.resume();
+      }
       if (act.frame_scene || keys.frame_scene)
         orbit_frame(orbit, view->source ? scene_bounds(*view->source) : scene_bounds(initial),
                     scene_camera.fov_y_degrees);

@@ -20,6 +20,6 @@ struct viewer_options {
 };
 
 // Returns an exit code; without a display it says so and returns 1.
-int run_viewer(const scene& s, const solver_options& solver, const viewer_options& options);
+int run_viewer(const scene& s, const solver_settings& solver, const viewer_options& options);
 
 }  // namespace bounce

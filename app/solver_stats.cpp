@@ -1,0 +1,64 @@
+#include "solver_stats.h"
+
+#include <fstream>
+
+namespace bounce {
+namespace {
+
+nlohmann::json to_json(const rgb& c) {
+  return {c.r, c.g, c.b};
+}
+
+}  // namespace
+
+nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings, const patch_mesh& meshed,
+                                 const radiosity_state& state, double mesh_seconds) {
+  const radiosity_stats& st = state.stats;
+  const power_balance& pb = state.balance;
+  const patch_mesh& solved = *state.mesh;  // refined, with adaptive meshing
+  nlohmann::json passes = nlohmann::json::array();
+  for (const refinement_pass& pass : state.adaptive.history)
+    passes.push_back({{"unshot_fraction", pass.unshot_fraction},
+                      {"gradient_marks", pass.gradient},
+                      {"shadow_marks", pass.shadow},
+                      {"elements_before", pass.elements_before},
+                      {"elements_after", pass.elements_after},
+                      {"new_vertices", pass.new_vertices},
+                      {"seconds", pass.seconds}});
+  return {
+      {"scene", s.source},
+      {"method", name_of(settings.form_factors.method)},
+      {"max_edge", solved.max_edge},
+      {"elements", solved.element_count()},
+      {"elements_meshed", meshed.element_count()},
+      {"vertices", solved.vertex_count()},
+      {"patches", solved.patch_count()},
+      {"adaptive", settings.adaptive.enabled},
+      {"refinement_passes", passes},
+      {"patch_edge", mesher_params_for(settings, s).patch_edge},
+      {"mesh_seconds", mesh_seconds},
+      {"shots", st.shots},
+      {"unshot_fraction", st.unshot_fraction},
+      {"seconds", st.seconds},
+      {"rays", st.rays},
+      {"power_balance_error", balance_error(pb)},
+      {"power",
+       {{"emitted", to_json(pb.emitted)},
+        {"received", to_json(pb.received)},
+        {"shot", to_json(pb.shot)},
+        {"unshot", to_json(pb.unshot)},
+        {"refined", to_json(pb.refined)}}},
+  };
+}
+
+bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {
+  std::ofstream out(path);
+  out << stats.dump(2) << "\n";
+  if (!out) {
+    error = path + ": cannot write statistics";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace bounce

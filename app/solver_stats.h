@@ -1,0 +1,24 @@
+// The solver statistics that `--stats FILE` writes (solve, render, trace):
+// one JSON layout for every command that solves.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "patch_mesh.h"
+#include "radiosity.h"
+#include "scene.h"
+#include "solver_settings.h"
+
+namespace bounce {
+
+// Mesh, settings, shots, time and the power balance of a finished run.
+// `meshed` is the mesh as the mesher built it (the state's may be refined).
+nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings, const patch_mesh& meshed,
+                                 const radiosity_state& state, double mesh_seconds);
+
+// Writes `stats` to `path`; false with `error` (naming the file) on failure.
+bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error);
+
+}  // namespace bounce
