@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "check.h"
 #include "point_lights.h"
 
 namespace bounce {
@@ -85,6 +86,16 @@ void shoot_patch(radiosity_state& state, std::size_t patch) {
 
 std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
                                                       const radiosity_params& params) {
+  // The mesher's contract: every element names three vertices of the mesh
+  // and one of its patches.
+  BOUNCE_CHECK(mesh.element_patches.size() == mesh.element_count());
+  BOUNCE_CHECK(mesh.vertex_emission.size() == mesh.vertex_count());
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    BOUNCE_CHECK(t[0] >= 0 && t[1] >= 0 && t[2] >= 0);
+    BOUNCE_CHECK(std::size_t(std::max({t[0], t[1], t[2]})) < mesh.vertex_count());
+    BOUNCE_CHECK(std::size_t(mesh.element_patches[e]) < mesh.patch_count());
+  }
   auto state = std::make_unique<radiosity_state>();
   state->mesh = &mesh;
   state->source = &s;
@@ -145,6 +156,9 @@ bool step_radiosity(radiosity_state& state) {
     ++state.stats.shots;
   }
   update_fraction(state);
+  // The power bookkeeping holds to round-off after every step (the
+  // balance is kept as running sums: checking it costs nothing).
+  BOUNCE_CHECK(balance_error(state.balance) <= 1e-6);
   state.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
