@@ -58,7 +58,7 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
   // The panel, headless: ImGui needs no platform backend, only a display
   // size and a few frames to lay its windows out.
   std::unique_ptr<radiosity_state> state;
-  std::vector<convergence_point> history;
+  convergence_log history;
   struct imgui_scope {
     bool active = false;
     ~imgui_scope() {
@@ -117,12 +117,21 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
     }
   }
   state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
+  // The solution on screen; adaptive meshing brings a refined mesh to upload first.
+  const patch_mesh* shown_mesh = &mesh;
+  auto show = [&](const radiosity_state& st) {
+    if (st.mesh != shown_mesh) {
+      view.renderer().upload(*st.mesh);
+      shown_mesh = st.mesh;
+    }
+    view.renderer().update(*make_snapshot(st));
+  };
   bool frames_ok = true;
   std::size_t frames = 0;
   run_radiosity(*state, solver.stop, [&](const radiosity_state& st) {
     if (options.panel) history.push_back({st.stats.seconds, st.stats.unshot_fraction});
     if (options.frames_dir.empty() || !frames_ok || st.stats.shots % std::uint64_t(options.frame_every) != 0) return;
-    view.renderer().update(*make_snapshot(st));
+    show(st);
     char name[64];
     // Named by step (shots and refinement passes), so that no frame overwrites another.
     std::snprintf(name, sizeof name, "frame_%06llu.png",
@@ -132,7 +141,7 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
   });
   if (!frames_ok) return exit_input_error;
 
-  view.renderer().update(*make_snapshot(*state));
+  show(*state);
   if (!write_frame(options.png_path)) return exit_input_error;
   std::printf("solved: %llu shots, unshot %.4f%%, %zu elements, %.3f s\n",
               static_cast<unsigned long long>(state->stats.shots), 100.0 * state->stats.unshot_fraction,

@@ -298,15 +298,10 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& s
   const patch_mesh& mesh = *state.mesh;
   auto snap = std::make_shared<radiosity_snapshot>();
   snap->version = state.stats.shots + state.stats.refinements;
-  snap->mesh = state.refined_mesh;
   snap->stats = state.stats;
   snap->ambient = ambient_radiosity(state);
-  snap->radiosity.resize(mesh.vertex_count());
-  snap->direct.resize(mesh.vertex_count());
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    snap->radiosity[v] = glm::vec3(state.radiosity[v]);
-    snap->direct[v] = glm::vec3(state.direct[v]);
-  }
+  snap->radiosity = state.radiosity;
+  snap->direct = state.direct;
   std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
   std::vector<int> count(mesh.vertex_count(), 0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
@@ -316,7 +311,7 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& s
     }
   snap->unshot_vertex.resize(mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-    snap->unshot_vertex[v] = glm::vec3(count[v] ? sum[v] / double(count[v]) : rgb(0.0));
+    snap->unshot_vertex[v] = count[v] ? sum[v] / double(count[v]) : rgb(0.0);
   return snap;
 }
 

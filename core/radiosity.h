@@ -131,13 +131,14 @@ rgb ambient_radiosity(const radiosity_state& state);
 // of a one-pass Whitted still, taken from a (coarse) solution.
 rgb mean_indirect_irradiance(const radiosity_state& state);
 
-// An immutable copy for the viewer, published after every step.
+// An immutable copy of the solution, for the view and the stills. Its
+// arrays belong to the state's mesh at the time (state.mesh: refined, with
+// adaptive meshing); whoever shows it keeps that mesh with it.
 struct radiosity_snapshot {
-  std::uint64_t version = 0;               // shots and refinements so far; increases with every step
-  std::shared_ptr<const patch_mesh> mesh;  // the refined mesh the arrays belong to; null: the mesh the state began with
-  std::vector<glm::vec3> radiosity;        // per vertex, float for GL
-  std::vector<glm::vec3> direct;           // per vertex: the part of radiosity straight from the lights
-  std::vector<glm::vec3> unshot_vertex;    // per vertex: mean unshot of its elements (false colour)
+  std::uint64_t version = 0;       // shots and refinements so far; increases with every step
+  std::vector<rgb> radiosity;      // per vertex
+  std::vector<rgb> direct;         // per vertex: the part of radiosity straight from the lights
+  std::vector<rgb> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
   rgb ambient{0.0};
   radiosity_stats stats;
 };

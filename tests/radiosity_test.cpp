@@ -366,7 +366,7 @@ TEST(Radiosity, AmbientTermIsForDisplayOnly) {
   EXPECT_LT(with_ambient, 0.2 * plain);
   // The snapshot carries it separately; the stored solution is unchanged.
   auto snap = make_snapshot(*state);
-  EXPECT_EQ(snap->radiosity[0], glm::vec3(state->radiosity[0]));
+  EXPECT_EQ(snap->radiosity[0], state->radiosity[0]);
   EXPECT_EQ(snap->ambient, ambient);
   EXPECT_EQ(snap->version, state->stats.shots);
 }

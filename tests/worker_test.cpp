@@ -67,14 +67,48 @@ TEST(SolverWorker, PauseStepAndRestart) {
   EXPECT_TRUE(restarted->history.empty());
   EXPECT_FALSE(restarted->running);
   for (std::size_t v = 0; v < restarted->mesh->vertex_count(); ++v) {
-    const glm::vec3 e(restarted->mesh->vertex_emission[v]);
-    EXPECT_EQ(restarted->solution->radiosity[v], e) << "vertex " << v;
+    EXPECT_EQ(restarted->solution->radiosity[v], restarted->mesh->vertex_emission[v]) << "vertex " << v;
   }
   // Running again from there makes the same first shots as the first run.
   worker.step();
   worker.wait_idle();
   EXPECT_EQ(worker.latest()->solution->stats.shots, 1u);
   EXPECT_EQ(worker.latest()->mesh_version, 1u);
+}
+
+// With adaptive meshing the published mesh is the refined one, and the
+// solution published with it belongs to it.
+TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
+  solver_worker worker;
+  solver_settings settings = coarse(0.05);
+  settings.max_edge = 150;
+  settings.adaptive.enabled = true;
+  settings.adaptive.tolerance = 0.15;
+  worker.load(cornell(), settings);
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ASSERT_TRUE(view->mesh && view->solution);
+  EXPECT_GT(view->solution->stats.refinements, 0u);
+  EXPECT_GT(view->mesh->element_count(), view->meshed_elements);
+  EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
+}
+
+// The history is shared between published views, not copied: a view keeps
+// the points it was published with while the worker appends.
+TEST(ConvergenceLog, AppendsAcrossBlocksAndSharesThem) {
+  convergence_log log;
+  for (int i = 0; i < 2500; ++i) log.push_back({double(i), 1.0 / (i + 1)});
+  const convergence_log published = log;
+  for (int i = 2500; i < 3000; ++i) log.push_back({double(i), 0.0});
+  ASSERT_EQ(published.size(), 2500u);
+  ASSERT_EQ(log.size(), 3000u);
+  for (std::size_t i = 0; i < published.size(); ++i) ASSERT_EQ(published[i].seconds, double(i));
+  EXPECT_EQ(published.back().unshot_fraction, 1.0 / 2500);
+  EXPECT_EQ(log.back().seconds, 2999.0);
+  log.clear();
+  EXPECT_TRUE(log.empty());
+  EXPECT_EQ(published.size(), 2500u);  // the published view keeps its points
+  EXPECT_EQ(published.front().seconds, 0.0);
 }
 
 TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {

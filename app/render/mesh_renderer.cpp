@@ -36,7 +36,6 @@ bool mesh_renderer::init(std::string& error) {
 }
 
 void mesh_renderer::upload(const patch_mesh& mesh) {
-  refined_.reset();
   vertex_count_ = mesh.vertex_count();
   // Element size seen from a vertex: the square root of its elements' mean area.
   std::vector<double> area_sum(vertex_count_, 0.0);
@@ -91,15 +90,15 @@ void mesh_renderer::upload(const patch_mesh& mesh) {
 }
 
 void mesh_renderer::update(const radiosity_snapshot& snapshot) {
-  if (snapshot.mesh && snapshot.mesh != refined_) {
-    upload(*snapshot.mesh);
-    refined_ = snapshot.mesh;
-  }
   if (snapshot.radiosity.size() != vertex_count_) return;  // a solution of another mesh: nothing to show
+  // The solution stays in double up to here; GL takes float.
+  colours_.resize(2 * vertex_count_);
+  for (std::size_t v = 0; v < vertex_count_; ++v) {
+    colours_[v] = glm::vec3(snapshot.radiosity[v]);
+    colours_[vertex_count_ + v] = glm::vec3(snapshot.unshot_vertex[v]);
+  }
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(vertex_count_ * 3 * sizeof(float)), snapshot.radiosity.data());
-  glBufferSubData(GL_ARRAY_BUFFER, GLintptr(vertex_count_ * 3 * sizeof(float)),
-                  GLsizeiptr(vertex_count_ * 3 * sizeof(float)), snapshot.unshot_vertex.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(2 * vertex_count_ * 3 * sizeof(float)), colours_.data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   ambient_ = glm::vec3(snapshot.ambient);
 }

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 
@@ -39,15 +40,15 @@ class mesh_renderer {
   void upload(const patch_mesh& mesh);
 
   // Updates the per-vertex radiosity and unshot buffers in place
-  // (glBufferSubData): called after every solver step. Re-uploads the mesh
-  // only when the snapshot brings a refined one (adaptive meshing: new
-  // buffers of the new size, once per refinement pass).
+  // (glBufferSubData), converting to float. The snapshot must belong to the
+  // uploaded mesh (the caller uploads a refined mesh first); one of another
+  // size is ignored.
   void update(const radiosity_snapshot& snapshot);
 
   void draw(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings) const;
 
  private:
-  std::shared_ptr<const patch_mesh> refined_;  // the refined mesh uploaded by update, if any
+  std::vector<glm::vec3> colours_;  // radiosity then unshot per vertex, as uploaded
   unsigned int program_ = 0, wire_program_ = 0;
   unsigned int vao_ = 0;
   unsigned int static_buffer_ = 0, dynamic_buffer_ = 0, index_buffer_ = 0;

@@ -123,8 +123,8 @@ void error_tracker::run() {
     const std::shared_ptr<const job> work = std::move(pending_);
     const std::shared_ptr<const picture_judge> judge = judge_;
     lock.unlock();
-    const std::vector<rgb> radiosity(work->solution->radiosity.begin(), work->solution->radiosity.end());
-    const double error = judge->judge_solution(*work->mesh, radiosity, {}, diffuse_source::radiosity).error;
+    const double error =
+        judge->judge_solution(*work->mesh, work->solution->radiosity, {}, diffuse_source::radiosity).error;
     lock.lock();
     if (judge != judge_ || work->run != run_) continue;  // a new reference or a new run arrived meanwhile
     if (history_.empty() || history_.back().seconds != work->solution->stats.seconds)

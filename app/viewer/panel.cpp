@@ -44,8 +44,8 @@ namespace {
 
 // log10 of a quantity sampled at `samples` evenly spaced times in [0, end]
 // (the value last measured at or before each): the plot's x axis is time.
-template <typename point, typename quantity>
-std::vector<float> resample_log(const std::vector<point>& history, double end, int samples, quantity value) {
+template <typename history_type, typename quantity>
+std::vector<float> resample_log(const history_type& history, double end, int samples, quantity value) {
   std::vector<float> out;
   if (history.empty()) return out;
   end = std::max(end, 1e-9);

@@ -14,6 +14,17 @@ struct solver_worker::command {
   stop_criterion criterion;
 };
 
+void convergence_log::push_back(const convergence_point& p) {
+  if (size_ % block_size == 0) blocks_.push_back(std::make_shared<block>());
+  (*blocks_.back())[size_ % block_size] = p;
+  ++size_;
+}
+
+void convergence_log::clear() {
+  blocks_.clear();
+  size_ = 0;
+}
+
 solver_worker::solver_worker() : view_(std::make_shared<worker_view>()) {
   thread_ = std::thread([this] { run(); });
 }
@@ -147,6 +158,7 @@ void solver_worker::publish() {
   v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
   if (state_) v->solution = make_snapshot(*state_);
   v->history = history_;
+  unpublished_ = false;
   v->error = error_;
   if (state_) {
     v->converged = exhausted_ || stop_reached(*state_, criterion_);
@@ -161,8 +173,9 @@ void solver_worker::run() {
     std::unique_ptr<command> next;
     {
       std::unique_lock lock(mutex_);
-      const bool work = state_ && (!paused_ || single_step_) && !latest()->converged;
+      const bool work = state_ && (!paused_ || single_step_) && !(exhausted_ || stop_reached(*state_, criterion_));
       if (queue_.empty() && !work) {
+        if (unpublished_) publish();  // the last step's state, before going idle
         idle_ = true;
         wake_.wait(lock, [this] { return quit_ || !queue_.empty(); });
       }
@@ -177,13 +190,15 @@ void solver_worker::run() {
       publish();
       continue;
     }
-    // One shot, then publish: the view updates after every iteration. The
-    // shot runs on all cores but one, which stays free for drawing (Mesa's
-    // llvmpipe renders on the CPU): the UI must not stall.
+    // One shot, then publish if the last view was taken: the view shows
+    // the newest iteration at every frame, and no snapshot is built that no
+    // frame takes. The shot runs on all cores but one, which stays free for
+    // drawing (Mesa's llvmpipe renders on the CPU): the UI must not stall.
     arena_.execute([&] { exhausted_ = !step_radiosity(*state_); });  // nothing left: done
     single_step_ = false;
     history_.push_back({state_->stats.seconds, state_->stats.unshot_fraction});
-    publish();
+    unpublished_ = true;
+    if (wanted_.exchange(false)) publish();
   }
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -27,17 +28,41 @@ struct convergence_point {
   double unshot_fraction;
 };
 
+// The convergence history, appended to by the worker after every step and
+// published without copying the points: blocks are shared between the
+// worker and every view published, and a view sees the first size() points
+// (the worker only writes past them). Copying a log copies a few pointers.
+class convergence_log {
+ public:
+  static constexpr std::size_t block_size = 1024;
+  void push_back(const convergence_point& p);
+  void clear();  // the published views keep their blocks
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const convergence_point& operator[](std::size_t i) const { return (*blocks_[i / block_size])[i % block_size]; }
+  const convergence_point& front() const { return (*this)[0]; }
+  const convergence_point& back() const { return (*this)[size_ - 1]; }
+
+ private:
+  using block = std::array<convergence_point, block_size>;
+  std::vector<std::shared_ptr<block>> blocks_;
+  std::size_t size_ = 0;
+};
+
 // What the UI sees, immutable once published.
 struct worker_view {
-  std::uint64_t mesh_version = 0;  // changes when a new scene or mesh density is loaded
+  std::uint64_t mesh_version = 0;  // a new run: changes when a new scene or mesh density is loaded
   std::shared_ptr<const scene> source;
-  std::shared_ptr<const patch_mesh> mesh;  // the mesh being solved: refined while solving, with adaptive meshing
-  std::size_t meshed_elements = 0;         // elements as the mesher built them
+  // The mesh being solved, which the solution belongs to: a new one with
+  // each refinement pass (adaptive meshing). The view uploads it when it
+  // changes: the one signal that a mesh is new.
+  std::shared_ptr<const patch_mesh> mesh;
+  std::size_t meshed_elements = 0;  // elements as the mesher built them
   std::shared_ptr<const radiosity_snapshot> solution;
-  std::vector<convergence_point> history;  // unshot fraction against time since the (re)start
-  bool running = false;                    // shooting now
-  bool converged = false;                  // the stopping criterion holds (or nothing is left)
-  std::string error;                       // last failure (bad scene, mesh too large); the previous scene stays
+  convergence_log history;  // unshot fraction against time since the (re)start
+  bool running = false;     // shooting now
+  bool converged = false;   // the stopping criterion holds (or nothing is left)
+  std::string error;        // last failure (bad scene, mesh too large); the previous scene stays
 };
 
 class solver_worker {
@@ -57,7 +82,13 @@ class solver_worker {
   void restart();  // back to B = E; running or paused as before
   void set_criterion(const stop_criterion& criterion);
 
-  std::shared_ptr<const worker_view> latest() const { return std::atomic_load(&view_); }
+  // The newest published view. Taking it asks for the next: the worker
+  // builds a snapshot after a step only when the last one was taken (at
+  // most one per frame of the window), and always before it goes idle.
+  std::shared_ptr<const worker_view> latest() const {
+    wanted_ = true;
+    return std::atomic_load(&view_);
+  }
 
   // Blocks until the worker is idle (paused, converged or failed); for
   // tests and the scripted window run.
@@ -86,7 +117,9 @@ class solver_worker {
   bool single_step_ = false;
   bool exhausted_ = false;
   std::uint64_t mesh_version_ = 0;
-  std::vector<convergence_point> history_;
+  convergence_log history_;
+  bool unpublished_ = false;  // steps made since the last publish
+  mutable std::atomic<bool> wanted_{true};
   std::string error_;
   std::atomic<bool> idle_{true};
 

@@ -41,9 +41,7 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
     const ray_scene rays(s);
     std::unique_ptr<radiosity_field> field;
     if (mesh && solution && solution->radiosity.size() == mesh->vertex_count()) {
-      const std::vector<rgb> radiosity(solution->radiosity.begin(), solution->radiosity.end());
-      const std::vector<rgb> direct(solution->direct.begin(), solution->direct.end());
-      field = std::make_unique<radiosity_field>(*mesh, radiosity, direct);
+      field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct);
     } else if (p.method == integrator::whitted) {
       p.diffuse = diffuse_source::ambient;
     }

@@ -159,7 +159,9 @@ int run_viewer(const scene& initial, const solver_settings& solver, const viewer
     }
     camera scene_camera = initial.view;
     orbit_state orbit = orbit_from_camera(scene_camera);
-    std::uint64_t uploaded_mesh = 0, uploaded_version = ~0ull;
+    std::shared_ptr<const patch_mesh> uploaded_mesh;
+    std::shared_ptr<const scene> shown_source;
+    std::uint64_t uploaded_version = ~0ull;
     double last_x = 0, last_y = 0;
     glfwGetCursorPos(window, &last_x, &last_y);
     auto last_frame = std::chrono::steady_clock::now();
@@ -185,15 +187,18 @@ int run_viewer(const scene& initial, const solver_settings& solver, const viewer
       // Newest published work: a new mesh is uploaded once, then only the
       // radiosity buffer changes.
       const std::shared_ptr<const worker_view> view = worker.latest();
-      if (!view->mesh) frame = 0;  // scripted frames count from the first picture of the scene
-      if (view->mesh && view->mesh_version != uploaded_mesh) {
+      if (!view->mesh) frame = 0;                       // scripted frames count from the first picture of the scene
+      if (view->mesh && view->mesh != uploaded_mesh) {  // a new scene, density or refinement pass
         renderer.upload(*view->mesh);
-        uploaded_mesh = view->mesh_version;
+        uploaded_mesh = view->mesh;
         uploaded_version = ~0ull;
-        if (view->source && view->mesh_version > 1) {  // a newly opened scene brings its camera
+      }
+      if (view->source != shown_source) {
+        if (shown_source) {  // a newly opened scene brings its camera
           scene_camera = view->source->view;
           orbit = orbit_from_camera(scene_camera);
         }
+        shown_source = view->source;
       }
       if (view->solution && view->solution->version != uploaded_version) {
         const auto upload_start = std::chrono::steady_clock::now();
