@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "solver_settings.h"
 #include "error_tracker.h"
 #include "mesh_renderer.h"
+#include "solver_settings.h"
 #include "solver_worker.h"
 
 namespace bounce {
