@@ -12,30 +12,27 @@ struct error_tracker::job {
   std::string setting;
 };
 
-error_tracker::error_tracker() : thread_([this] { run(); }) {}
+error_tracker::error_tracker() = default;
 
 error_tracker::~error_tracker() {
   {
     const std::lock_guard lock(mutex_);
-    quit_ = true;
-    progress_.cancel = true;
+    if (progress_) progress_->cancel = true;
   }
-  wake_.notify_all();
-  thread_.join();
+  jobs_.wait_idle();
 }
 
 void error_tracker::compute_reference(std::shared_ptr<const scene> source, const camera& view, int size, int spp) {
   auto request = std::make_shared<scene>(*source);
   request->view = view;
   request->view.width = request->view.height = size;
+  auto progress = std::make_shared<trace_progress>();
   {
     const std::lock_guard lock(mutex_);
-    progress_.cancel = true;  // a reference still being traced is replaced
-    reference_request_ = std::move(request);
-    request_source_ = std::move(source);
-    request_spp_ = spp;
+    if (progress_) progress_->cancel = true;  // a reference still being traced is replaced
+    progress_ = progress;
   }
-  wake_.notify_all();
+  jobs_.post([this, request, source, spp, progress] { trace_reference(request, source, spp, progress); });
 }
 
 void error_tracker::observe(const worker_view& view, const std::string& setting) {
@@ -64,17 +61,20 @@ void error_tracker::observe(const worker_view& view, const std::string& setting)
       pending_ = std::make_shared<job>(job{run_, view.mesh, view.solution, view.converged, setting});
       queued_version_ = version;
       queued_converged_ = view.converged;
+      if (!measure_posted_) {
+        measure_posted_ = true;
+        jobs_.post([this] { measure(); });
+      }
     }
   }
-  wake_.notify_all();
 }
 
 error_status error_tracker::status(const std::string& setting) const {
   const std::lock_guard lock(mutex_);
   error_status s;
   s.computing = computing_;
-  const long total = progress_.pixels_total;
-  s.progress = total > 0 ? std::min(1.0, double(progress_.pixels_done) / double(total)) : 0.0;
+  const long total = progress_ ? progress_->pixels_total.load() : 0;
+  s.progress = total > 0 ? std::min(1.0, double(progress_->pixels_done) / double(total)) : 0.0;
   s.ready = judge_ != nullptr;
   s.summary = summary_;
   s.history = history_;
@@ -82,57 +82,54 @@ error_status error_tracker::status(const std::string& setting) const {
   return s;
 }
 
-void error_tracker::run() {
+void error_tracker::trace_reference(std::shared_ptr<const scene> request, std::shared_ptr<const scene> source, int spp,
+                                    std::shared_ptr<trace_progress> progress) {
+  if (progress->cancel) return;  // replaced before it started
+  {
+    const std::lock_guard lock(mutex_);
+    computing_ = true;
+  }
+  trace_params params;
+  params.method = integrator::path;
+  params.spp = spp;
+  trace_stats stats;
+  bench_truth truth;
+  truth.picture = trace_image(*request, ray_scene(*request), nullptr, params, progress.get(), &stats);
+  truth.exclude_above = emitter_threshold(*request);
+  std::shared_ptr<const picture_judge> judge;
+  if (!stats.cancelled) judge = std::make_shared<picture_judge>(*request, truth);
+  const std::lock_guard lock(mutex_);
+  computing_ = false;
+  if (!judge) return;
+  judge_ = judge;
+  judge_scene_ = request;
+  reference_source_ = source;
+  queued_version_ = ~0ull;
+  history_.clear();
+  char line[160];
+  std::snprintf(line, sizeof line, "reference: %dx%d path traced, %d spp, %.1f s; error = relative RMSE, 4x4 blocks",
+                request->view.width, request->view.height, spp, stats.seconds);
+  summary_ = line;
+}
+
+// Measures the newest solution queued (older ones queued meanwhile were
+// replaced: measuring never holds the solver up).
+void error_tracker::measure() {
   std::unique_lock lock(mutex_);
-  for (;;) {
-    wake_.wait(lock, [this] { return quit_ || reference_request_ || (pending_ && judge_); });
-    if (quit_) return;
-    if (reference_request_) {
-      const std::shared_ptr<const scene> request = std::move(reference_request_);
-      const std::shared_ptr<const scene> source = std::move(request_source_);
-      const int spp = request_spp_;
-      computing_ = true;
-      progress_.cancel = false;
-      progress_.pixels_done = 0;
-      progress_.pixels_total = 0;
-      lock.unlock();
-      trace_params params;
-      params.method = integrator::path;
-      params.spp = spp;
-      trace_stats stats;
-      bench_truth truth;
-      truth.picture = trace_image(*request, ray_scene(*request), nullptr, params, &progress_, &stats);
-      truth.exclude_above = emitter_threshold(*request);
-      std::shared_ptr<const picture_judge> judge;
-      if (!stats.cancelled) judge = std::make_shared<picture_judge>(*request, truth);
-      lock.lock();
-      computing_ = false;
-      if (!judge) continue;
-      judge_ = judge;
-      judge_scene_ = request;
-      reference_source_ = source;
-      queued_version_ = ~0ull;
-      history_.clear();
-      char line[160];
-      std::snprintf(line, sizeof line,
-                    "reference: %dx%d path traced, %d spp, %.1f s; error = relative RMSE, 4x4 blocks",
-                    request->view.width, request->view.height, spp, stats.seconds);
-      summary_ = line;
-      continue;
-    }
-    const std::shared_ptr<const job> work = std::move(pending_);
-    const std::shared_ptr<const picture_judge> judge = judge_;
-    lock.unlock();
-    const double error =
-        judge->judge_solution(*work->mesh, work->solution->radiosity, {}, diffuse_source::radiosity).error;
-    lock.lock();
-    if (judge != judge_ || work->run != run_) continue;  // a new reference or a new run arrived meanwhile
-    if (history_.empty() || history_.back().seconds != work->solution->stats.seconds)
-      history_.push_back({work->solution->stats.seconds, error});
-    if (work->converged) {
-      if (auto it = runs_.find(work->setting); it != runs_.end() && it->second.seconds == work->solution->stats.seconds)
-        it->second.error = error;
-    }
+  measure_posted_ = false;
+  if (!pending_ || !judge_) return;
+  const std::shared_ptr<const job> work = std::move(pending_);
+  const std::shared_ptr<const picture_judge> judge = judge_;
+  lock.unlock();
+  const double error =
+      judge->judge_solution(*work->mesh, work->solution->radiosity, {}, diffuse_source::radiosity).error;
+  lock.lock();
+  if (judge != judge_ || work->run != run_) return;  // a new reference or a new run arrived meanwhile
+  if (history_.empty() || history_.back().seconds != work->solution->stats.seconds)
+    history_.push_back({work->solution->stats.seconds, error});
+  if (work->converged) {
+    if (auto it = runs_.find(work->setting); it != runs_.end() && it->second.seconds == work->solution->stats.seconds)
+      it->second.error = error;
   }
 }
 

@@ -7,15 +7,14 @@
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "background_worker.h"
 #include "bench.h"
 #include "solver_worker.h"
 
@@ -60,18 +59,15 @@ class error_tracker {
   error_status status(const std::string& setting) const;
 
  private:
-  void run();
-
   struct job;
+  void trace_reference(std::shared_ptr<const scene> request, std::shared_ptr<const scene> source, int spp,
+                       std::shared_ptr<trace_progress> progress);
+  void measure();
+
   mutable std::mutex mutex_;
-  std::condition_variable wake_;
-  bool quit_ = false;
-  trace_progress progress_;
 
   // Guarded by mutex_.
-  std::shared_ptr<const scene> reference_request_;  // scene with the reference's camera, to trace
-  std::shared_ptr<const scene> request_source_;     // the worker's scene it was made from
-  int request_spp_ = 0;
+  std::shared_ptr<trace_progress> progress_;  // of the newest reference asked for; each has its own
   std::shared_ptr<const picture_judge> judge_;
   std::shared_ptr<const scene> judge_scene_;       // the judge's scene (reference camera), kept alive for it
   std::shared_ptr<const scene> reference_source_;  // solutions of this scene are measured
@@ -84,9 +80,10 @@ class error_tracker {
   std::map<std::string, last_run> runs_;
   bool run_recorded_ = false;
   bool queued_converged_ = false;  // whether the queued solution was queued as converged
+  bool measure_posted_ = false;    // a measuring task is waiting: it takes the newest pending solution
   std::uint64_t run_ = 0;          // counts restarts and new meshes: a measurement of an older run is dropped
 
-  std::thread thread_;  // last: it starts in the constructor and reads every member above
+  background_worker jobs_;  // last: destroyed first, so no task outlives the members it uses
 };
 
 }  // namespace bounce

@@ -8,18 +8,19 @@ still_job::~still_job() {
   cancel();
 }
 
-void still_job::join() {
-  if (thread_.joinable()) thread_.join();
-}
-
 void still_job::cancel() {
-  progress_.cancel = true;
-  join();
+  {
+    const std::lock_guard lock(mutex_);
+    if (progress_) progress_->cancel = true;
+  }
+  jobs_.wait_idle();
 }
 
 double still_job::progress() const {
-  const long total = progress_.pixels_total;
-  return total > 0 ? std::min(1.0, double(progress_.pixels_done) / double(total)) : 0.0;
+  const std::lock_guard lock(mutex_);
+  if (!progress_) return 0.0;
+  const long total = progress_->pixels_total;
+  return total > 0 ? std::min(1.0, double(progress_->pixels_done) / double(total)) : 0.0;
 }
 
 std::shared_ptr<const still_result> still_job::result() const {
@@ -30,11 +31,12 @@ std::shared_ptr<const still_result> still_job::result() const {
 void still_job::start(std::shared_ptr<const scene> source, const camera& view, std::shared_ptr<const patch_mesh> mesh,
                       std::shared_ptr<const radiosity_snapshot> solution, const trace_params& params) {
   cancel();
-  progress_.cancel = false;
-  progress_.pixels_done = 0;
-  progress_.pixels_total = 0;
-  running_ = true;
-  thread_ = std::thread([this, source, view, mesh, solution, params] {
+  auto progress = std::make_shared<trace_progress>();
+  {
+    const std::lock_guard lock(mutex_);
+    progress_ = progress;
+  }
+  jobs_.post([this, progress, source, view, mesh, solution, params] {
     scene s = *source;
     s.view = view;
     trace_params p = params;
@@ -46,7 +48,7 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
       p.diffuse = diffuse_source::ambient;
     }
     auto out = std::make_shared<still_result>();
-    out->picture = trace_image(s, rays, field.get(), p, &progress_, &out->stats);
+    out->picture = trace_image(s, rays, field.get(), p, progress.get(), &out->stats);
     if (!out->stats.cancelled) {
       const trace_stats& st = out->stats;
       char line[256];
@@ -59,7 +61,6 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
       out->version = ++finished_;
       result_ = std::move(out);
     }
-    running_ = false;
   });
 }
 

@@ -7,8 +7,8 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 
+#include "background_worker.h"
 #include "image.h"
 #include "patch_mesh.h"
 #include "radiosity.h"
@@ -37,19 +37,16 @@ class still_job {
              std::shared_ptr<const radiosity_snapshot> solution, const trace_params& params);
   void cancel();
 
-  bool running() const { return running_; }
+  bool running() const { return jobs_.busy(); }
   double progress() const;  // 0..1 of the running still
   std::shared_ptr<const still_result> result() const;
 
  private:
-  void join();
-
-  std::thread thread_;
-  std::atomic<bool> running_{false};
-  trace_progress progress_;
   mutable std::mutex mutex_;
+  std::shared_ptr<trace_progress> progress_;  // of the newest still started; each still has its own
   std::shared_ptr<const still_result> result_;
   std::uint64_t finished_ = 0;
+  background_worker jobs_;  // last: destroyed first, so no still outlives the members it writes
 };
 
 }  // namespace bounce
