@@ -1,4 +1,4 @@
-// Form factors against the closed forms of shared/references/accuracy.md.
+// Form factors against the closed forms of docs/accuracy.md.
 #include <cmath>
 #include <numbers>
 

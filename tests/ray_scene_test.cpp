@@ -1,4 +1,4 @@
-// Ray queries (accuracy.md item 9) and specular optics (items 10, 11).
+// Ray queries and specular optics (docs/accuracy.md, section 8).
 #include <cmath>
 #include <numbers>
 
