@@ -4,6 +4,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "adaptive.h"
+#include "coplanar_cut.h"
 #include "patch_mesh.h"
 #include "scene_info.h"
 #include "tessellate.h"
@@ -234,18 +236,29 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     }
   }
   if (estimate > double(max_patch_elements)) {
-    error = "max edge " + std::to_string(max_edge) + " would make about " + std::to_string(std::llround(estimate)) +
-            " elements (limit " + std::to_string(max_patch_elements) + "); use a larger --max-edge";
+    char text[160];  // %g: the estimate may be far beyond any integer type
+    std::snprintf(text, sizeof text, "max edge %g would make %s %.3g elements (limit %zu); use a larger --max-edge",
+                  max_edge, std::isfinite(estimate) ? "about" : "more than", std::min(estimate, 1e308),
+                  std::size_t(max_patch_elements));
+    error = text;
     return false;
   }
 
+  // Every surface tessellated first, so that coplanar overlaps (a light in
+  // the ceiling's plane) can be cut out of the surface behind before meshing.
+  const bounds3 b = scene_bounds(s);
+  std::vector<triangle_mesh> tessellated;
+  std::vector<bool> flat;
+  for (const surface& surf : s.surfaces) {
+    tessellated.push_back(tessellate(surf, max_edge));
+    flat.push_back(std::holds_alternative<polygon_mesh>(surf.geometry));
+  }
+  cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
   working_mesh w;
   std::size_t nonmanifold = 0;
-  for (std::size_t i = 0; i < s.surfaces.size(); ++i) {
-    const surface& surf = s.surfaces[i];
-    const bool flat = std::holds_alternative<polygon_mesh>(surf.geometry);
-    add_surface(w, tessellate(surf, max_edge), static_cast<int>(i), flat, cos_crease, nonmanifold);
-  }
+  for (std::size_t i = 0; i < s.surfaces.size(); ++i)
+    add_surface(w, tessellated[i], static_cast<int>(i), flat[i], cos_crease, nonmanifold);
+  tessellated.clear();
   // Two levels of bisection: to the patch size, where each face becomes a
   // patch, then to the element size; split_copy hands the patch index down.
   const double patch_edge = std::max(params.patch_edge, max_edge);
@@ -262,7 +275,6 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
 
   const om_mesh& m = w.mesh;
   patch_mesh pm;
-  bounds3 b = scene_bounds(s);
   pm.scene_diagonal = std::max(glm::length(b.max - b.min), 1e-300);
   pm.max_edge = max_edge;
   const std::size_t nv = m.n_vertices();

@@ -73,6 +73,12 @@ inline constexpr std::size_t max_patch_elements = 5'000'000;
 // T-vertices inside a surface. Curved surfaces are tessellated at max_edge
 // directly, so their vertices stay on the true surface.
 //
+// Coplanar overlaps: where a flat surface lies in the plane of another
+// facing the same way (within coplanar_relative_tolerance of the scene's
+// diagonal, e.g. a light 0.1 mm under a ceiling), the covered part is cut
+// out of the surface behind before meshing (coplanar_cut.h); emitters keep
+// all their area.
+//
 // Receive points: a vertex on the boundary of its surface (e.g. where a wall
 // meets the floor) is evaluated a hair inside its own faces (1e-3 of its
 // edges' length), the one-sided limit; at the corner itself the neighbour

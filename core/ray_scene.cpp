@@ -7,6 +7,7 @@
 
 #include "embree_device.h"
 
+#include "coplanar_cut.h"
 #include "scene_info.h"
 #include "scene_io.h"
 #include "tessellate.h"
@@ -165,6 +166,19 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
   RTCDevice dev = embree_device();
   state_->scene = rtcNewScene(dev);
   rtcSetSceneFlags(state_->scene, RTC_SCENE_FLAG_ROBUST);
+  // Triangulated surfaces first, with coplanar overlaps cut out of the
+  // surface behind exactly as the patch mesher does (coplanar_cut.h): a
+  // light in the ceiling's plane would otherwise leave two coincident
+  // surfaces, and which one a ray hits would depend on Embree's traversal.
+  std::vector<triangle_mesh> tessellated(s.surfaces.size());
+  std::vector<bool> flat(s.surfaces.size(), false);
+  for (std::size_t i = 0; i < s.surfaces.size(); ++i) {
+    const shape& geometry = s.surfaces[i].geometry;
+    if (std::holds_alternative<sphere>(geometry) || std::holds_alternative<quadric>(geometry)) continue;
+    tessellated[i] = tessellate(s.surfaces[i], patch_edge > 0.0 ? patch_edge : 0.25 * default_max_edge(s));
+    flat[i] = std::holds_alternative<polygon_mesh>(geometry);
+  }
+  cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
   for (std::size_t i = 0; i < s.surfaces.size(); ++i) {
     const surface& surf = s.surfaces[i];
     embree_state::geometry g;
@@ -183,7 +197,7 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
       rtcSetGeometryIntersectFunction(geometry, analytic_intersect);
       rtcSetGeometryOccludedFunction(geometry, analytic_occluded);
     } else {
-      g.triangles = tessellate(surf, patch_edge > 0.0 ? patch_edge : 0.25 * default_max_edge(s));
+      g.triangles = std::move(tessellated[i]);
       if (g.triangles.triangles.empty()) continue;
       geometry = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,

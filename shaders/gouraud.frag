@@ -1,9 +1,9 @@
 #version 330 core
-in vec3 vertex_radiance;
-in vec3 vertex_unshot;
-in vec3 world_normal;
-in vec3 world_position;
-in float vertex_element_size;
+// Centroid, perspective-corrected by hand: see gouraud.vert.
+noperspective centroid in vec4 radiance_w;
+noperspective centroid in vec4 unshot_w;
+noperspective centroid in vec3 normal_w;
+noperspective centroid in vec3 position_w;
 
 uniform float exposure;
 uniform int tone_curve;        // 0: clamp + sRGB, 1: filmic (ACES fit) + sRGB, 2: linear radiance (PFM)
@@ -31,6 +31,12 @@ vec3 heat(float t) {
 }
 
 void main() {
+  float w = 1.0 / radiance_w.w;
+  vec3 vertex_radiance = radiance_w.xyz * w;
+  vec3 vertex_unshot = unshot_w.xyz * w;
+  float vertex_element_size = unshot_w.w * w;
+  vec3 world_normal = normal_w * w;
+  vec3 world_position = position_w * w;
   if (highlight_back_faces != 0 && dot(world_normal, eye - world_position) < 0.0) {
     fragment = vec4(1.0, 0.0, 1.0, 1.0);  // magenta: a flipped normal faces the camera
     return;

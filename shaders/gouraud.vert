@@ -10,18 +10,25 @@ layout(location = 5) in float element_size;  // square root of the mean area of 
 uniform mat4 view_projection;
 uniform vec3 ambient;        // Cohen 1988 ambient radiosity, zero when switched off
 
-out vec3 vertex_radiance;    // W / (m^2 sr): B / pi
-out vec3 vertex_unshot;
-out vec3 world_normal;
-out vec3 world_position;
-out float vertex_element_size;
+// Interpolated at the centroid: under MSAA a pixel partly covered by a
+// triangle is shaded at a covered sample, never at the pixel centre outside
+// the triangle, where linear interpolation extrapolates (negative radiance
+// at silhouettes, wild values where triangles are smaller than a pixel).
+// Perspective is corrected by hand (each value over w, and 1 / w, linear in
+// the screen, divided in gouraud.frag): Mesa's llvmpipe (22.3) takes w at
+// the pixel centre for centroid inputs, so a constant came out up to 0.4%
+// off; the quotient of two values interpolated at one point is exact.
+noperspective centroid out vec4 radiance_w;  // (B / pi in W / (m^2 sr), 1) / w
+noperspective centroid out vec4 unshot_w;    // (unshot / pi, element size) / w
+noperspective centroid out vec3 normal_w;
+noperspective centroid out vec3 position_w;
 
 void main() {
   const float pi = 3.14159265358979;
-  vertex_radiance = (radiosity + reflectance * ambient) / pi;
-  vertex_unshot = unshot / pi;
-  world_normal = normal;
-  world_position = position;
-  vertex_element_size = element_size;
   gl_Position = view_projection * vec4(position, 1.0);
+  float inv_w = 1.0 / gl_Position.w;
+  radiance_w = vec4((radiosity + reflectance * ambient) / pi, 1.0) * inv_w;
+  unshot_w = vec4(unshot / pi, element_size) * inv_w;
+  normal_w = normal * inv_w;
+  position_w = position * inv_w;
 }

@@ -32,7 +32,9 @@ TEST(CameraMath, ProjectionAndRaysAgree) {
   const glm::dmat4 clip = projection_matrix(c, box) * view_matrix(c);
   // A point along the ray through a pixel projects back onto that pixel.
   for (auto [x, y] : {std::pair{256.0, 128.0}, std::pair{10.5, 3.5}, std::pair{500.0, 250.0}}) {
-    const vec3 p = c.eye + camera_ray_direction(c, x, y) * 900.0;
+    // 900 mm deep: within the box's depth range, which the near plane hugs.
+    const vec3 d = camera_ray_direction(c, x, y);
+    const vec3 p = c.eye + d / d.z * 900.0;
     const glm::dvec4 q = clip * glm::dvec4(p, 1.0);
     const double px = (q.x / q.w * 0.5 + 0.5) * c.width;
     const double py = (1.0 - (q.y / q.w * 0.5 + 0.5)) * c.height;  // image rows go down
