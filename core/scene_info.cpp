@@ -1,5 +1,8 @@
 #include "scene_info.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "tessellate.h"
@@ -23,9 +26,9 @@ std::string summarize_scene(const scene& s, double max_edge, scene_summary& out)
 
   auto emits = [&](int m) { return glm::any(glm::greaterThan(s.materials[m].ke, rgb(0.0))); };
   std::set<int> emitting;
-  std::size_t estimate = 0;
+  double estimate = 0.0;  // in double: a tiny max edge overflows any integer
   for (const surface& surf : s.surfaces) {
-    estimate += estimate_triangles(surf, max_edge);
+    estimate += double(estimate_triangles(surf, max_edge));
     bool surface_emits = false;
     std::visit(
         [&](const auto& g) {
@@ -59,9 +62,14 @@ std::string summarize_scene(const scene& s, double max_edge, scene_summary& out)
     out.emitting_surfaces += surface_emits ? 1 : 0;
   }
   out.emitting_materials = emitting.size();
-  if (estimate > max_tessellated_triangles)
-    return "tessellating at max edge " + std::to_string(max_edge) + " would make about " + std::to_string(estimate) +
-           " triangles (limit " + std::to_string(max_tessellated_triangles) + "); use a larger --max-edge";
+  if (estimate > double(max_tessellated_triangles)) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "tessellating at max edge %g would make %s %.3g triangles (limit %zu); use a larger --max-edge",
+                  max_edge, std::isfinite(estimate) ? "about" : "more than", std::min(estimate, 1e308),
+                  std::size_t(max_tessellated_triangles));
+    return text;
+  }
   for (const surface& surf : s.surfaces) out.triangles += tessellate(surf, max_edge).triangles.size();
   return {};
 }

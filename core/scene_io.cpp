@@ -1,6 +1,9 @@
 #include "scene_io.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -55,10 +58,18 @@ struct json_reader {
     }
   }
 
+  // Every number in a scene file is finite and at most max_file_number in
+  // magnitude (the OBJ reader's limit): intensities, emissions, backgrounds
+  // and sizes then cannot overflow in the products made of them.
   double number(const json& j, const std::string& where) const {
     if (!j.is_number()) fail(where, "must be a number");
     double v = j.get<double>();
     if (!std::isfinite(v)) fail(where, "must be finite");
+    if (std::abs(v) > max_file_number) {
+      char text[96];
+      std::snprintf(text, sizeof text, "%g is out of range (limit %g in magnitude)", v, max_file_number);
+      fail(where, text);
+    }
     return v;
   }
 
@@ -110,9 +121,36 @@ std::string line_column(const std::string& text, std::size_t byte) {
   return std::to_string(line) + ":" + std::to_string(column);
 }
 
+// Byte offset of the first number literal in `text` (outside strings) that
+// overflows a double, or npos.
+std::size_t first_overflowing_number(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {  // skip the string, escapes included
+      for (++i; i < text.size() && text[i] != '"'; ++i)
+        if (text[i] == '\\') ++i;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      const char* start = text.c_str() + i;
+      char* end = nullptr;
+      const double v = std::strtod(start, &end);
+      if (end == start) continue;
+      if (std::isinf(v)) return i;
+      i += std::size_t(end - start) - 1;
+    }
+  }
+  return std::string::npos;
+}
+
 json parse_json(const std::string& path, const std::string& text) {
   try {
     return json::parse(text);
+  } catch (const json::out_of_range& e) {
+    // A literal beyond a double (1e400): the library's message has no position.
+    const std::size_t at = first_overflowing_number(text);
+    if (at == std::string::npos) throw load_error(path + ": invalid JSON: " + e.what());
+    std::size_t end = at + 1;
+    while (end < text.size() && std::strchr("+-.0123456789eE", text[end])) ++end;
+    throw load_error(path + ":" + line_column(text, at) + ": number out of range: " + text.substr(at, end - at));
   } catch (const json::parse_error& e) {
     // e.what() repeats the position in nlohmann's own format; keep only the reason.
     std::string what = e.what();
@@ -200,7 +238,15 @@ struct scene_builder {
     if (!(scale > 0.0)) r.fail(where + ".scale", "must be positive");
     vec3 translate = j.contains("translate") ? r.vec<3>(j["translate"], where + ".translate") : vec3(0.0);
     int override_material = j.contains("material") ? material_ref(j, where) : -1;
-    obj_read_result obj = read_obj(file, s.materials, s.textures);
+    obj_read_result obj;
+    try {
+      obj = read_obj(file, s.materials, s.textures);
+    } catch (const load_error& e) {
+      // Name the scene file and the surface that asked for the OBJ too.
+      load_error named(r.file + ": " + where + ".obj: " + e.what());
+      named.warnings = e.warnings;
+      throw named;
+    }
     report.dropped_faces += obj.dropped_faces;
     report.warnings.insert(report.warnings.end(), obj.warnings.begin(), obj.warnings.end());
     for (surface& surf : obj.surfaces) {
@@ -384,6 +430,80 @@ void drop_degenerate_faces(scene& s, load_report& report) {
   });
 }
 
+// Emitting polygon surfaces whose light reaches nothing: for every one of
+// their emitting faces, all other geometry lies behind the face's plane or
+// turns its back to the face (radiosity's form factors are then zero, and
+// the picture black). Light leaves the side from which the corners run
+// anticlockwise. Curved emitters and point lights shine all round; they
+// are not checked. One warning per surface.
+void warn_unreachable_emitters(const scene& s, load_report& report) {
+  struct face_ref {
+    const polygon_mesh* mesh;
+    const polygon_face* face;
+    vec3 centroid, normal;  // normal: unit, or zero for a degenerate face
+  };
+  std::vector<face_ref> faces;
+  std::vector<bounds3> curved;  // boxes of curved surfaces: receivers seen from any side
+  for (const surface& surf : s.surfaces) {
+    if (const auto* mesh = std::get_if<polygon_mesh>(&surf.geometry)) {
+      for (const polygon_face& f : mesh->faces) {
+        vec3 newell(0.0), centroid(0.0);
+        for (std::size_t i = 0; i < f.position.size(); ++i) {
+          newell +=
+              glm::cross(mesh->positions[f.position[i]], mesh->positions[f.position[(i + 1) % f.position.size()]]);
+          centroid += mesh->positions[f.position[i]];
+        }
+        const double length = glm::length(newell);
+        faces.push_back({mesh, &f, centroid / double(f.position.size()), length > 0.0 ? newell / length : vec3(0.0)});
+      }
+    } else {
+      scene one;
+      one.surfaces.push_back(surf);
+      curved.push_back(scene_bounds(one));
+    }
+  }
+  const bounds3 all = scene_bounds(s);
+  const double eps = 1e-9 * glm::length(all.max - all.min);
+  auto in_front = [&](const vec3& p, const face_ref& f) { return glm::dot(p - f.centroid, f.normal) > eps; };
+  auto any_corner_in_front = [&](const face_ref& of, const face_ref& f) {
+    for (int i : of.face->position)
+      if (in_front(of.mesh->positions[i], f)) return true;
+    return false;
+  };
+  auto emits = [&](int material) { return glm::any(glm::greaterThan(s.materials[material].ke, rgb(0.0))); };
+  std::size_t emitting_faces = 0;
+  for (const face_ref& f : faces) emitting_faces += emits(f.face->material) ? 1 : 0;
+  // A scene of many emitting faces is not checked: the test is quadratic.
+  if (double(emitting_faces) * double(faces.size()) > 2e7) return;
+
+  for (const surface& surf : s.surfaces) {
+    const auto* mesh = std::get_if<polygon_mesh>(&surf.geometry);
+    if (!mesh) continue;
+    bool emitting = false, reaches = false;
+    std::string material_name;
+    for (const face_ref& e : faces) {
+      if (reaches) break;
+      if (e.mesh != mesh || !emits(e.face->material)) continue;
+      if (!emitting) material_name = s.materials[e.face->material].name;
+      emitting = true;
+      if (e.normal == vec3(0.0)) continue;
+      for (const face_ref& r : faces)
+        if (&r != &e && r.normal != vec3(0.0) && any_corner_in_front(r, e) && any_corner_in_front(e, r)) {
+          reaches = true;
+          break;
+        }
+      for (const bounds3& b : curved)
+        for (int corner = 0; corner < 8 && !reaches; ++corner)
+          reaches = in_front(
+              vec3(corner & 1 ? b.max.x : b.min.x, corner & 2 ? b.max.y : b.min.y, corner & 4 ? b.max.z : b.min.z), e);
+    }
+    if (emitting && !reaches)
+      report.warnings.push_back(s.source + ": surface '" + surf.name + "' emits (material '" + material_name +
+                                "') but faces away from every other surface: its light reaches nothing (light "
+                                "leaves the side from which its corners run anticlockwise)");
+  }
+}
+
 }  // namespace
 
 std::optional<std::string> read_file(const std::string& path) {
@@ -425,7 +545,13 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     drop_degenerate_faces(s, report);
     if (s.surfaces.empty()) throw load_error(path + ": no surfaces left after dropping degenerate faces");
     if (std::string problem = validate_scene(s); !problem.empty()) throw load_error(path + ": " + problem);
+    if (!has_light_source(s))
+      report.warnings.push_back(path +
+                                ": no emitter: no surface has a material with ke > 0 and there is no "
+                                "point light, so nothing lights the scene");
+    warn_unreachable_emitters(s, report);
   } catch (const load_error& e) {
+    report.warnings.insert(report.warnings.end(), e.warnings.begin(), e.warnings.end());
     report.error = e.what();
     return false;
   } catch (const std::exception& e) {

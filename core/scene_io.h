@@ -27,9 +27,13 @@ struct load_report {
 bool load_scene(const std::string& path, scene& out, load_report& report);
 
 // Checks a scene built in code or loaded: finite numbers, rho in [0,1),
-// non-negative emission, sane camera and sizes, at least one emitter or
-// light. Returns an empty string when valid, else the first problem.
+// non-negative emission, sane camera and sizes. Returns an empty string
+// when valid, else the first problem.
 std::string validate_scene(const scene& s);
+
+// True when some surface emits (ke > 0) or a point light shines. A scene
+// without is valid (its picture is black) but worth a warning.
+bool has_light_source(const scene& s);
 
 // Reads a file's bytes, from disk or from the embedded files.
 std::optional<std::string> read_file(const std::string& path);

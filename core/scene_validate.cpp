@@ -1,6 +1,7 @@
 // validate_scene: the rules every scene obeys, whether loaded or built in
 // code. Each message names the object at fault.
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "scene_io.h"
@@ -12,6 +13,9 @@ namespace {
 // precision in the offsets the ray tracer and form factors need.
 constexpr double max_coordinate = 1e12;
 constexpr int max_image_side = 16384;
+// Emitted radiance above this is a mistake in any unit system, and with
+// coordinates up to max_coordinate keeps pi * ke * area finite.
+constexpr double max_emission = 1e9;
 
 bool finite(const vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -20,10 +24,15 @@ bool in_range(const vec3& v) {
   return finite(v) && glm::all(glm::lessThanEqual(glm::abs(v), vec3(max_coordinate)));
 }
 
+// %g style, so that huge values stay short (DBL_MAX is 1.79769e+308).
+std::string str(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
 std::string str(const vec3& v) {
-  std::ostringstream s;
-  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
-  return s.str();
+  return "(" + str(v.x) + ", " + str(v.y) + ", " + str(v.z) + ")";
 }
 
 std::string check_material(const material& m) {
@@ -36,6 +45,7 @@ std::string check_material(const material& m) {
     if (m.rho[i] < 0.0 || m.rho[i] >= 1.0)
       return who + "rho " + str(m.rho) + " must be in [0, 1) per channel (rho >= 1 creates energy)";
     if (m.ke[i] < 0.0) return who + "emission ke " + str(m.ke) + " must not be negative";
+    if (m.ke[i] > max_emission) return who + "emission ke " + str(m.ke) + " is above the limit of " + str(max_emission);
     if (m.kr[i] < 0.0 || m.kr[i] > 1.0) return who + "kr " + str(m.kr) + " must be in [0, 1]";
     if (m.kt[i] < 0.0 || m.kt[i] > 1.0) return who + "kt " + str(m.kt) + " must be in [0, 1]";
     if (m.specular[i] < 0.0) return who + "specular " + str(m.specular) + " must not be negative";
@@ -48,7 +58,10 @@ std::string check_material(const material& m) {
 }
 
 std::string check_surface(const scene& s, const surface& surf) {
-  const std::string who = (surf.source.empty() ? "" : surf.source + ": ") + "surface '" + surf.name + "': ";
+  // The caller names the scene file; name the surface's own file only when
+  // it is another one (an OBJ the scene includes).
+  const bool other_file = !surf.source.empty() && surf.source != s.source;
+  const std::string who = (other_file ? surf.source + ": " : "") + "surface '" + surf.name + "': ";
   auto material_ok = [&](int m) { return m >= 0 && m < static_cast<int>(s.materials.size()); };
   return std::visit(
       [&](const auto& g) -> std::string {
@@ -165,11 +178,13 @@ std::string validate_scene(const scene& s) {
       return "texture '" + t.name + "': checker needs colours in [0, 1] and a positive scale";
   }
   if (std::string e = check_camera(s.view); !e.empty()) return e;
-  bool any_light = false;
-  for (const point_light& l : s.lights) any_light = any_light || glm::any(glm::greaterThan(l.intensity, vec3(0.0)));
-  if (!any_light && !has_emitting_surface(s))
-    return "nothing emits light: no surface has a material with ke > 0 and there is no point light";
   return {};
+}
+
+bool has_light_source(const scene& s) {
+  for (const point_light& l : s.lights)
+    if (glm::any(glm::greaterThan(l.intensity, vec3(0.0)))) return true;
+  return has_emitting_surface(s);
 }
 
 }  // namespace bounce

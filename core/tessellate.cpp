@@ -12,12 +12,15 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 #include <variant>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
 
 namespace bounce {
@@ -34,6 +37,9 @@ constexpr int max_quadric_cells_per_axis = 1 << 10;
 constexpr double max_quadric_cells = 1 << 24;
 // estimate_triangles counts a quadric's triangles on a grid at most this fine.
 constexpr int estimate_cells_per_axis = 64;
+// Grid cells across a bounded quadric's smallest extent, whatever max_edge
+// says: fewer and a small sphere falls between the grid nodes.
+constexpr int min_quadric_cells = 4;
 
 // ---------------------------------------------------------------------------
 // Small helpers
@@ -225,46 +231,97 @@ double cross2(const vec2& a, const vec2& b, const vec2& c) {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-// Whether a ring corner other than the ear's own lies inside or on the ear
-// (a, b, c). Corners at the same place as the ear's are not in the way.
-bool ear_is_blocked(const std::vector<vec2>& p, const std::vector<int>& ring, int a, int b, int c) {
-  for (int r : ring) {
-    const vec2& q = p[r];
-    if (q == p[a] || q == p[b] || q == p[c]) continue;
-    if (cross2(p[a], p[b], q) >= 0.0 && cross2(p[b], p[c], q) >= 0.0 && cross2(p[c], p[a], q) >= 0.0) return true;
-  }
-  return false;
-}
-
 // Ear clipping of a simple counter-clockwise polygon; triangles as corner
 // indices, counter-clockwise. When rounding leaves no clean ear, the most
 // convex corner goes (with its triangle, if that has area), so it always ends.
+//
+// The ring is a linked list and the search for the next ear resumes where
+// the last one was cut, so a convex polygon costs O(n). Only reflex (or
+// straight) corners can lie inside an ear of a simple polygon, so only they
+// are tested against it: O(n r) for r reflex corners.
 std::vector<glm::ivec3> ear_clip(const std::vector<vec2>& p) {
-  std::vector<int> ring(p.size());
-  std::iota(ring.begin(), ring.end(), 0);
+  const int n = static_cast<int>(p.size());
   std::vector<glm::ivec3> out;
-  const auto clip = [&](std::size_t k) {
-    const std::size_t m = ring.size();
-    const int a = ring[(k + m - 1) % m], b = ring[k], c = ring[(k + 1) % m];
-    if (cross2(p[a], p[b], p[c]) > 0.0) out.emplace_back(a, b, c);
-    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+  if (n < 3) return out;
+  out.reserve(static_cast<std::size_t>(n) - 2);
+  std::vector<int> prev(n), next(n);
+  for (int i = 0; i < n; ++i) {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  std::vector<char> alive(n, 1), reflex(n, 0);
+  std::vector<int> reflex_list;
+  const auto corner_cross = [&](int v) { return cross2(p[prev[v]], p[v], p[next[v]]); };
+  for (int i = 0; i < n; ++i)
+    if (corner_cross(i) <= 0.0) {
+      reflex[i] = 1;
+      reflex_list.push_back(i);
+    }
+  std::size_t stale = 0;  // entries of reflex_list no longer reflex or alive
+
+  // Whether a reflex corner other than the ear's own lies inside or on the
+  // ear (a, b, c). Corners at the same place as the ear's are not in the way.
+  const auto blocked = [&](int a, int b, int c) {
+    if (stale > reflex_list.size() / 2) {
+      std::erase_if(reflex_list, [&](int r) { return !alive[r] || !reflex[r]; });
+      stale = 0;
+    }
+    for (int r : reflex_list) {
+      if (!alive[r] || !reflex[r]) continue;
+      const vec2& q = p[r];
+      if (q == p[a] || q == p[b] || q == p[c]) continue;
+      if (cross2(p[a], p[b], q) >= 0.0 && cross2(p[b], p[c], q) >= 0.0 && cross2(p[c], p[a], q) >= 0.0) return true;
+    }
+    return false;
   };
-  while (ring.size() > 3) {
-    const std::size_t m = ring.size();
-    std::size_t ear = m, most_convex = 0;
+  const auto update = [&](int v) {
+    const char now = corner_cross(v) <= 0.0;
+    if (now == reflex[v]) return;
+    if (now) {
+      reflex_list.push_back(v);
+    } else {
+      ++stale;
+    }
+    reflex[v] = now;
+  };
+  const auto clip = [&](int b) {
+    const int a = prev[b], c = next[b];
+    if (cross2(p[a], p[b], p[c]) > 0.0) out.emplace_back(a, b, c);
+    alive[b] = 0;
+    if (reflex[b]) ++stale;
+    next[a] = c;
+    prev[c] = a;
+    update(a);
+    update(c);
+  };
+
+  int remaining = n, v = 0;
+  while (remaining > 3) {
+    // Walk the ring once from v: the first clean ear, else the most convex.
+    int ear = -1, most_convex = v;
     double most_cross = -std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < m && ear == m; ++k) {
-      const int a = ring[(k + m - 1) % m], b = ring[k], c = ring[(k + 1) % m];
-      const double cr = cross2(p[a], p[b], p[c]);
+    int k = v;
+    for (int step = 0; step < remaining; ++step, k = next[k]) {
+      const double cr = corner_cross(k);
       if (cr > most_cross) {
         most_cross = cr;
         most_convex = k;
       }
-      if (cr > 0.0 && !ear_is_blocked(p, ring, a, b, c)) ear = k;
+      if (cr > 0.0 && !blocked(prev[k], k, next[k])) {
+        ear = k;
+        break;
+      }
     }
-    clip(ear < m ? ear : most_convex);
+    const int cut = ear >= 0 ? ear : most_convex;
+    v = next[cut];
+    clip(cut);
+    --remaining;
   }
-  clip(1);
+  // The last three, starting from the lowest index.
+  int first = v;
+  for (int i = 0, k = v; i < 3; ++i, k = next[k]) first = std::min(first, k);
+  const int a = first, b = next[a], c = next[b];
+  if (cross2(p[a], p[b], p[c]) > 0.0) out.emplace_back(a, b, c);
   return out;
 }
 
@@ -517,10 +574,68 @@ class quadric_mesher {
   std::unordered_map<std::int64_t, int> ids_;
 };
 
+// Where a bounded quadric (an ellipsoid, or an elliptic cylinder along
+// axes the polynomial does not mention) can be: its box cut down to the
+// surface's own bounding box, padded. nullopt when it is unbounded, empty or
+// a point, or misses the box.
+std::optional<std::pair<vec3, vec3>> quadric_surface_bounds(const quadric& q) {
+  const glm::dmat3 a(q.a, q.d, q.f, q.d, q.b, q.e, q.f, q.e, q.c);
+  const vec3 b(q.g, q.h, q.j);
+  bool present[3];
+  for (int i = 0; i < 3; ++i) present[i] = a[i] != vec3(0.0) || b[i] != 0.0;
+  for (const double sign : {1.0, -1.0}) {
+    // The same surface as sign * polynomial; absent axes get a 1 on the
+    // diagonal so that the matrix is definite exactly when the rest is.
+    glm::dmat3 m = sign * a;
+    for (int i = 0; i < 3; ++i)
+      if (!present[i]) m[i][i] = 1.0;
+    const double scale = std::max({std::abs(m[0][0]), std::abs(m[1][1]), std::abs(m[2][2])});
+    const double minor1 = m[0][0], minor2 = m[0][0] * m[1][1] - m[0][1] * m[1][0], minor3 = glm::determinant(m);
+    const double tiny = 1e-12;
+    if (!(minor1 > tiny * scale && minor2 > tiny * scale * scale && minor3 > tiny * scale * scale * scale)) continue;
+    const glm::dmat3 inv = glm::inverse(m);
+    const vec3 bs = sign * b;
+    const vec3 centre = -(inv * bs);
+    const double rho = glm::dot(bs, inv * bs) - sign * q.k;  // surface: y^T m y = rho, y = x - centre
+    if (!(rho > 0.0) || !std::isfinite(rho)) return std::nullopt;
+    vec3 lo = q.box_min, hi = q.box_max;
+    for (int i = 0; i < 3; ++i) {
+      if (!present[i]) continue;
+      const double half = std::sqrt(rho * inv[i][i]);
+      const double pad = 0.02 * half;  // keeps the surface strictly inside the grid
+      lo[i] = std::max(lo[i], centre[i] - half - pad);
+      hi[i] = std::min(hi[i], centre[i] + half + pad);
+    }
+    if (!glm::all(glm::lessThan(lo, hi))) return std::nullopt;
+    return std::pair{lo, hi};
+  }
+  return std::nullopt;
+}
+
 // The cells are a little smaller than max_edge: a triangle's edges can be as
-// long as a tetrahedron's edges, up to the cube's diagonal.
+// long as a tetrahedron's edges, up to the cube's diagonal. A bounded
+// surface small for max_edge (a small sphere in a big box) gets a grid over
+// its own bounds with at least min_quadric_cells across it, which would
+// otherwise fall between the grid nodes and vanish.
 quadric_grid quadric_grid_for(const quadric& q, double max_edge) {
-  return quadric_resolution(q, max_edge / 1.5);
+  const double cell = max_edge / 1.5;
+  if (const auto bounds = quadric_surface_bounds(q)) {
+    // The surface's own size, where it is bounded, before the box clips it:
+    // a hemisphere cut by its box is as small as its sphere, no smaller.
+    quadric unclipped = q;
+    unclipped.box_min = vec3(-std::numeric_limits<double>::infinity());
+    unclipped.box_max = vec3(std::numeric_limits<double>::infinity());
+    double smallest = std::numeric_limits<double>::infinity();
+    if (const auto whole = quadric_surface_bounds(unclipped))
+      for (int i = 0; i < 3; ++i) smallest = std::min(smallest, whole->second[i] - whole->first[i]);
+    if (smallest / min_quadric_cells < cell) {
+      quadric own = q;
+      own.box_min = bounds->first;
+      own.box_max = bounds->second;
+      return quadric_resolution(own, smallest / min_quadric_cells);
+    }
+  }
+  return quadric_resolution(q, cell);
 }
 
 // Triangle count of the tessellation: exact on small grids; on big ones,

@@ -247,6 +247,39 @@ TEST(TessellateQuadric, HyperboloidIsAnOrientedManifold) {
   for (const vec3& p : m.positions) ASSERT_LT(std::abs(quadric_value(q, p)), 1e-9);
 }
 
+// A small ball in a huge box: at the box's scale it falls between the grid
+// nodes and vanished; it is tessellated at its own scale instead.
+TEST(TessellateQuadric, SmallSphereInAHugeBoxIsNotLost) {
+  quadric q;
+  q.a = q.b = q.c = 1.0;
+  q.g = -0.5;         // centre (0.5, 0, 0)
+  q.k = 0.25 - 0.04;  // radius 0.2
+  q.box_min = vec3(-1e6);
+  q.box_max = vec3(1e6);
+  for (double max_edge : {1e5, 1.0}) {
+    const triangle_mesh m = tessellate(q, max_edge);
+    ASSERT_GT(m.triangles.size(), 20u) << max_edge;
+    expect_well_formed(m);
+    EXPECT_TRUE(is_closed(m));
+    for (const vec3& p : m.positions) ASSERT_LT(std::abs(quadric_value(q, p)), 1e-9);
+    EXPECT_GT(area(m), 0.5 * 4.0 * pi * 0.04);
+    const double estimate = static_cast<double>(estimate_triangles(surface{"s", "", q}, max_edge));
+    EXPECT_GE(estimate, 0.5 * m.triangles.size());
+    EXPECT_LE(estimate, 2.0 * m.triangles.size());
+  }
+  // An elliptic cylinder along z (z absent from the polynomial), thin in x
+  // and y: bounded across, so found too; the box still clips it in z.
+  quadric cylinder;
+  cylinder.a = 1.0;
+  cylinder.b = 4.0;
+  cylinder.k = -0.01;
+  cylinder.box_min = vec3(-1e4, -1e4, -1.0);
+  cylinder.box_max = vec3(1e4, 1e4, 1.0);
+  const triangle_mesh m = tessellate(cylinder, 1e3);
+  ASSERT_GT(m.triangles.size(), 20u);
+  for (const vec3& p : m.positions) ASSERT_LE(std::abs(p.z), 1.0);
+}
+
 // ---------------------------------------------------------------------------
 // Bezier
 
@@ -469,6 +502,28 @@ TEST(Triangulate, StarKeepsArea) {
     star.emplace_back(r * std::cos(angle), r * std::sin(angle));
   }
   expect_exact_triangulation(star, 5 * 1.0 * 0.4 * std::sin(pi / 5));
+}
+
+// A comb: half its corners reflex, the case ear clipping finds hardest.
+// Every ear is checked against them; the area and the winding must hold.
+TEST(Triangulate, CombWithThousandsOfReflexCornersKeepsArea) {
+  polygon_mesh mesh;
+  polygon_face face;
+  const int teeth = 2000;
+  for (int t = 0; t < teeth; ++t) {  // right to left along the top
+    const double x = teeth - t;
+    for (const vec2& c : {vec2(x, 1.0), vec2(x - 0.5, 1.0), vec2(x - 0.5, 0.1), vec2(x - 1.0, 0.1)})
+      mesh.positions.emplace_back(c.x, c.y, 0.0);
+  }
+  mesh.positions.emplace_back(0.0, -1.0, 0.0);
+  mesh.positions.emplace_back(teeth, -1.0, 0.0);
+  for (int i = 0; i < static_cast<int>(mesh.positions.size()); ++i) face.position.push_back(i);
+  mesh.faces.push_back(face);
+  const triangle_mesh m = triangulate(mesh);
+  EXPECT_EQ(m.triangles.size(), mesh.positions.size() - 2);
+  // Teeth 0.5 x 0.9 each, on a spine 1.1 high.
+  EXPECT_NEAR(area(m), teeth * (0.5 * 0.9 + 1.1), 1e-6);
+  for (const glm::ivec3& t : m.triangles) ASSERT_GT(triangle_cross(m, t).z, 0.0);
 }
 
 TEST(Triangulate, RepeatedCornersCollapse) {
