@@ -4,17 +4,17 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "bench_command.h"
-#include "image_metrics.h"
+#include "compare_command.h"
+#include "info_command.h"
+#include "obj_io.h"
 #include "render_command.h"
-#include "scene_info.h"
 #include "scene_io.h"
 #include "solve_command.h"
 #include "trace_command.h"
@@ -30,123 +30,105 @@ bool parse_double(std::string_view text, double& value) {
   return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
 }
 
+std::string format_g(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+}  // namespace
+
+// CLI11's PositiveNumber and Range let NaN and infinities through and print
+// DBL_MAX in full (309 digits); this prints limits with %g.
+
+CLI::Validator number_in(double lo, double hi, bool lo_open, bool hi_open) {
+  const bool unbounded = std::isinf(hi);
+  const std::string range =
+      unbounded ? std::string(lo_open ? "> " : ">= ") + format_g(lo)
+                : std::string(lo_open ? "(" : "[") + format_g(lo) + ", " + format_g(hi) + (hi_open ? ")" : "]");
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0.0;
+        if (!parse_double(text, v)) return "'" + text + "' is not a finite number";
+        if (v < lo || (lo_open && v == lo) || v > hi || (hi_open && v == hi))
+          return format_g(v) + " is out of range: must be " + (unbounded ? range : "in " + range);
+        return {};
+      },
+      unbounded ? range : "in " + range);
+}
+
+namespace {
+
+// A count: digits only (CLI11 reads "-1" into an unsigned as 2^64 - 1), at most `most`.
+CLI::Validator count_at_most(std::uint64_t most) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        std::string_view digits = text;
+        if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+        std::uint64_t v = 0;
+        auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+        if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size())
+          return "'" + text + "' is not a whole number from 0 to " + std::to_string(most);
+        if (v > most) return text + " is out of range: must be at most " + std::to_string(most);
+        return {};
+      },
+      most == std::numeric_limits<std::uint64_t>::max() ? ">= 0" : "0 to " + std::to_string(most));
+}
+
+// --eye, --target, --up: three finite numbers, each at most the scene
+// files' limit in magnitude.
+const CLI::Validator vec3_check(
+    [](std::string& text) -> std::string {
+      const auto v = parse_vec3(text);
+      if (!v) return "expected x,y,z (three finite numbers), got '" + text + "'";
+      for (int i = 0; i < 3; ++i)
+        if (std::abs((*v)[i]) > max_file_number)
+          return "coordinate " + format_g((*v)[i]) + " is out of range (limit " + format_g(max_file_number) +
+                 " in magnitude)";
+      return {};
+    },
+    "x,y,z");
+
+const CLI::Validator size_check(
+    [](std::string& text) -> std::string {
+      const auto size = parse_size(text);
+      if (!size) return "expected WxH (two whole numbers), got '" + text + "'";
+      return check_image_size(size->first, size->second);
+    },
+    "WxH");
+
 void print_warnings(const load_report& report) {
   for (const std::string& w : report.warnings) std::cerr << "warning: " << w << "\n";
   if (report.dropped_faces) std::cerr << "warning: " << report.dropped_faces << " degenerate face(s) dropped\n";
 }
 
+}  // namespace
+
 // Loads the scene named on the command line (or the embedded default) and
-// applies the camera overrides. Prints the error and returns false on failure.
-bool load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s) {
+// applies the camera overrides. Prints the error and returns its exit code
+// (exit_ok on success): a scene that cannot be used is an input error, an
+// override that makes the camera invalid a usage error.
+int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s) {
   load_report report;
   if (!load_scene(path.empty() ? default_scene_path : path, s, report)) {
+    print_warnings(report);  // what was said before the failure often explains it
     std::cerr << "error: " << report.error << "\n";
-    return false;
+    return exit_input_error;
   }
   print_warnings(report);
   if (camera_overrides) {
     if (std::string e = apply_camera_options(*camera_overrides, s.view); !e.empty()) {
       std::cerr << "error: " << e << "\n";
-      return false;
+      return exit_usage;
+    }
+    // The scene file's size, when --size did not replace it: the same limits.
+    if (std::string e = check_image_size(s.view.width, s.view.height); !e.empty()) {
+      std::cerr << "error: " << s.source << ": camera.size: " << e << " (use --size)\n";
+      return exit_input_error;
     }
   }
-  return true;
-}
-
-std::string format_vec3(const vec3& v) {
-  char buffer[128];
-  std::snprintf(buffer, sizeof buffer, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
-  return buffer;
-}
-
-int run_info(const std::string& path, bool as_json, double max_edge) {
-  scene s;
-  if (!load_for_command(path, nullptr, s)) return exit_input_error;
-  if (max_edge < 0.0) {
-    std::cerr << "error: --max-edge must be positive\n";
-    return exit_usage;
-  }
-  double edge = max_edge > 0.0 ? max_edge : default_max_edge(s);
-  scene_summary sum;
-  if (std::string e = summarize_scene(s, edge, sum); !e.empty()) {
-    std::cerr << "error: " << s.source << ": " << e << "\n";
-    return exit_input_error;
-  }
-  if (as_json) {
-    nlohmann::json j = {
-        {"scene", s.source},
-        {"surfaces", sum.surfaces},
-        {"polygon_meshes", sum.polygon_meshes},
-        {"spheres", sum.spheres},
-        {"quadrics", sum.quadrics},
-        {"bezier_surfaces", sum.bezier_surfaces},
-        {"bspline_surfaces", sum.bspline_surfaces},
-        {"polygons", sum.polygons},
-        {"patches", sum.patches},
-        {"triangles", sum.triangles},
-        {"max_edge", sum.max_edge},
-        {"materials", sum.materials},
-        {"textures", sum.textures},
-        {"emitting_materials", sum.emitting_materials},
-        {"emitting_surfaces", sum.emitting_surfaces},
-        {"point_lights", sum.point_lights},
-        {"bounds",
-         {{"min", {sum.bounds.min.x, sum.bounds.min.y, sum.bounds.min.z}},
-          {"max", {sum.bounds.max.x, sum.bounds.max.y, sum.bounds.max.z}}}},
-        {"camera",
-         {{"eye", {s.view.eye.x, s.view.eye.y, s.view.eye.z}},
-          {"target", {s.view.target.x, s.view.target.y, s.view.target.z}},
-          {"up", {s.view.up.x, s.view.up.y, s.view.up.z}},
-          {"fov", s.view.fov_y_degrees},
-          {"size", {s.view.width, s.view.height}}}},
-    };
-    std::cout << j.dump(2) << "\n";
-    return exit_ok;
-  }
-  std::cout << "scene:      " << s.source << "\n"
-            << "surfaces:   " << sum.surfaces << " (polygon meshes " << sum.polygon_meshes << ", spheres "
-            << sum.spheres << ", quadrics " << sum.quadrics << ", Bezier " << sum.bezier_surfaces << ", B-spline "
-            << sum.bspline_surfaces << ")\n"
-            << "polygons:   " << sum.polygons << "\n"
-            << "patches:    " << sum.patches << " (Bezier patches + B-spline spans)\n"
-            << "triangles:  " << sum.triangles << " (curved surfaces tessellated at max edge " << sum.max_edge << ")\n"
-            << "materials:  " << sum.materials << " (" << sum.emitting_materials << " emitting), textures "
-            << sum.textures << "\n"
-            << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)\n"
-            << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
-            << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
-            << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";
   return exit_ok;
 }
-
-int run_compare(const std::string& test_path, const std::string& reference_path, int factor, double bright) {
-  image test, reference;
-  std::string error;
-  if (!read_pfm(test_path, test, error) || !read_pfm(reference_path, reference, error)) {
-    std::cerr << "error: " << error << "\n";
-    return exit_input_error;
-  }
-  if (test.width != reference.width || test.height != reference.height) {
-    std::cerr << "error: " << test_path << " is " << test.width << "x" << test.height << " but " << reference_path
-              << " is " << reference.width << "x" << reference.height << "\n";
-    return exit_input_error;
-  }
-  if (bright > 0.0) {
-    const std::vector<bool> emitters = bright_pixels(reference, bright);
-    exclude_pixels(test, emitters, 1);
-    exclude_pixels(reference, emitters, 1);
-  }
-  test = downsample(test, factor);
-  reference = downsample(reference, factor);
-  std::printf("mean radiance: test %.6g, reference %.6g (ratio %.5f)\n", mean_radiance(test), mean_radiance(reference),
-              mean_radiance(test) / mean_radiance(reference));
-  std::printf("relative RMSE %.5f, mean relative error %.5f, max relative error %.4f (%dx%d after %dx downsampling)\n",
-              relative_rmse(test, reference), mean_relative_error(test, reference), max_relative_error(test, reference),
-              test.width, test.height, factor);
-  return exit_ok;
-}
-
-}  // namespace
 
 std::optional<vec3> parse_vec3(const std::string& text) {
   vec3 v;
@@ -171,6 +153,17 @@ std::optional<std::pair<int, int>> parse_size(const std::string& text) {
   if (c1 != std::errc() || e1 != text.data() + x || c2 != std::errc() || e2 != text.data() + text.size())
     return std::nullopt;
   return std::pair{w, h};
+}
+
+std::string check_image_size(long long width, long long height) {
+  if (width < 1 || height < 1 || width > max_image_side || height > max_image_side)
+    return "size " + std::to_string(width) + "x" + std::to_string(height) + " must be from 1 to " +
+           std::to_string(max_image_side) + " pixels per side";
+  if (width * height > max_image_pixels)
+    return "size " + std::to_string(width) + "x" + std::to_string(height) + " has " + std::to_string(width * height) +
+           " pixels, more than the limit of " + std::to_string(max_image_pixels) + " (" +
+           std::to_string(max_image_side) + "x" + std::to_string(max_image_pixels / max_image_side) + ")";
+  return {};
 }
 
 std::string apply_camera_options(const camera_options& options, camera& view) {
@@ -212,18 +205,19 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
       ->default_str(std::string(name_of(o.form_factors.method)));
   command.add_option("--max-edge", o.max_edge, "longest element edge, scene units (default: diagonal/24)")
-      ->check(CLI::PositiveNumber);
+      ->check(number_in(0.0, INFINITY, true));
   command.add_option("--until", o.stop.unshot_fraction, "stop when the unshot power fraction falls below this")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(number_in(0.0, 1.0))
       ->capture_default_str();
-  command.add_option("--max-shots", o.stop.max_shots, "stop after this many shots")->check(CLI::NonNegativeNumber);
-  command.add_option("--time", o.stop.seconds, "stop after this many seconds of solving")
-      ->check(CLI::NonNegativeNumber);
+  command.add_option("--max-shots", o.stop.max_shots, "stop after this many shots (0: no limit)")
+      ->check(count_at_most(std::numeric_limits<std::uint64_t>::max()));
+  command.add_option("--time", o.stop.seconds, "stop after this many seconds of solving (0: no limit)")
+      ->check(number_in(0.0, INFINITY));
   command
       .add_option("--patch-edge", o.patch_edge,
                   "size of the shooting patches over the elements (substructuring); default 4 x max edge, "
                   "0: every element shoots (exact)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0.0, INFINITY));
   command.add_flag_callback(
       "--full-rays", [&o] { o.form_factors.adaptive_rays = false; },
       "raycast: cast every shadow ray, without the 2x2 visibility probe");
@@ -235,26 +229,55 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
   command.add_option("--hemicube", o.form_factors.hemicube_resolution, "hemicube: resolution of the top face")
       ->check(CLI::Range(8, 4096))
       ->capture_default_str();
-  command.add_flag("--adaptive", o.adaptive.enabled,
-                   "adaptive meshing: refine at contacts and near emitters, then where the radiosity changes "
-                   "and along shadow edges while solving");
+  CLI::Option* adaptive =
+      command.add_flag("--adaptive", o.adaptive.enabled,
+                       "adaptive meshing: refine at contacts and near emitters, then where the radiosity changes "
+                       "and along shadow edges while solving");
   command
       .add_option("--tolerance", o.adaptive.tolerance,
                   "adaptive: split where vertex radiosities differ by this fraction")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+      ->check(number_in(0.0, INFINITY, true))
+      ->capture_default_str()
+      ->needs(adaptive);
   command
       .add_option("--min-edge", o.adaptive.min_edge,
                   "adaptive: elements whose longest edge is at most this are not split (default: max edge / 8)")
-      ->check(CLI::PositiveNumber);
+      ->check(number_in(0.0, INFINITY, true))
+      ->needs(adaptive);
+}
+
+std::span<const char* const> solver_option_names() {
+  static constexpr const char* names[] = {"--method",   "--max-edge",   "--until",     "--max-shots",
+                                          "--time",     "--patch-edge", "--full-rays", "--rays",
+                                          "--hemicube", "--adaptive",   "--tolerance", "--min-edge"};
+  return names;
+}
+
+std::string given_options(const CLI::App& command, std::span<const char* const> names) {
+  std::string list;
+  for (const char* name : names)
+    if (command.count(name) > 0) list += std::string(list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+std::string check_solver_options(const CLI::App& command, const solver_settings& settings) {
+  const bool hemicube = settings.form_factors.method == form_factor_method::hemicube;
+  if (hemicube && command.count("--rays")) return "--rays applies to --method raycast only";
+  if (hemicube && command.count("--full-rays")) return "--full-rays applies to --method raycast only";
+  if (!hemicube && command.count("--hemicube")) return "--hemicube applies to --method hemicube only";
+  return {};
 }
 
 void add_camera_options(CLI::App& command, camera_options& o) {
-  command.add_option("--eye", o.eye, "camera position x,y,z");
-  command.add_option("--target", o.target, "point looked at x,y,z");
-  command.add_option("--up", o.up, "up direction x,y,z");
-  command.add_option("--fov", o.fov, "vertical field of view, degrees");
-  command.add_option("--size", o.size, "image size WxH");
+  command.add_option("--eye", o.eye, "camera position x,y,z")->check(vec3_check);
+  command.add_option("--target", o.target, "point looked at x,y,z")->check(vec3_check);
+  command.add_option("--up", o.up, "up direction x,y,z")->check(vec3_check);
+  command.add_option("--fov", o.fov, "vertical field of view, degrees")->check(number_in(0.0, 180.0, true, true));
+  command
+      .add_option("--size", o.size,
+                  "image size WxH (1 to " + std::to_string(max_image_side) + " per side, at most " +
+                      std::to_string(max_image_pixels) + " pixels)")
+      ->check(size_check);
 }
 
 int run_cli(int argc, char** argv) {
@@ -269,38 +292,42 @@ int run_cli(int argc, char** argv) {
   CLI::App* info = app.add_subcommand("info", "load and validate a scene, print its counts");
   info->add_option("SCENE", scene_path, "scene file (.json or .obj)");
   info->add_flag("--json", as_json, "machine-readable output");
-  info->add_option("--max-edge", info_max_edge, "tessellation size for curved surfaces")->check(CLI::PositiveNumber);
+  info->add_option("--max-edge", info_max_edge, "tessellation size for curved surfaces")
+      ->check(number_in(0.0, INFINITY, true));
 
   struct solving_command {
     const char* name;
     const char* help;
+    bool has_camera;  // solve renders nothing: no camera options
     CLI::App* app = nullptr;
     std::string scene;
     solver_settings solver;
     camera_options camera;
   };
   solving_command commands[] = {
-      {"view", "open the interactive window", nullptr, {}, {}, {}},
-      {"render", "solve and render the Gouraud view headlessly to PNG/PFM", nullptr, {}, {}, {}},
-      {"trace", "solve, then ray trace a still (two-pass), or path trace a reference", nullptr, {}, {}, {}},
-      {"solve", "run the radiosity solver and report statistics", nullptr, {}, {}, {}},
+      {"view", "open the interactive window", true, nullptr, {}, {}, {}},
+      {"render", "solve and render the Gouraud view headlessly to PNG/PFM", true, nullptr, {}, {}, {}},
+      {"trace", "solve, then ray trace a still (two-pass), or path trace a reference", true, nullptr, {}, {}, {}},
+      {"solve", "run the radiosity solver and report statistics", false, nullptr, {}, {}, {}},
   };
   for (solving_command& c : commands) {
     c.app = app.add_subcommand(c.name, c.help);
     c.app->add_option("SCENE", c.scene, "scene file (.json or .obj)");
     add_solver_options(*c.app, c.solver);
-    add_camera_options(*c.app, c.camera);
+    if (c.has_camera) add_camera_options(*c.app, c.camera);
   }
   render_options render_extra;
   CLI::App* render = commands[1].app;
   render->add_option("--out", render_extra.png_path, "PNG of the Gouraud view (tone-mapped)")->capture_default_str();
   render->add_option("--pfm", render_extra.pfm_path, "PFM of the same view in linear radiance, unscaled");
-  render->add_option("--frames", render_extra.frames_dir, "also write one PNG per --frame-every shots into DIR");
-  render->add_option("--frame-every", render_extra.frame_every, "shots between frames")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  CLI::Option* render_frames =
+      render->add_option("--frames", render_extra.frames_dir, "also write one PNG per --frame-every shots into DIR");
+  render->add_option("--frame-every", render_extra.frame_every, "with --frames: shots between frames")
+      ->check(CLI::Range(1L, 1L << 40))
+      ->capture_default_str()
+      ->needs(render_frames);
   render->add_option("--exposure", render_extra.exposure, "displayed value = radiance x exposure")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in(min_exposure, max_exposure))
       ->capture_default_str();
   render->add_option("--tone", render_extra.curve, "tone curve")
       ->check(CLI::IsMember({"srgb", "filmic"}))
@@ -314,28 +341,34 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   viewer_options view_extra;
   CLI::App* view = commands[0].app;
-  view->add_option("--frames", view_extra.frames, "scripted run: draw this many frames")->check(CLI::PositiveNumber);
-  view->add_option("--screenshot", view_extra.screenshot_path, "after the scripted frames, save the window as PNG");
+  CLI::Option* view_frames = view->add_option("--frames", view_extra.frames, "scripted run: draw this many frames")
+                                 ->check(CLI::Range(1, 1 << 30));
+  view->add_option("--screenshot", view_extra.screenshot_path,
+                   "with --frames: after the scripted frames, save the window as PNG")
+      ->needs(view_frames);
   view->add_option(
-      "--still", view_extra.still_path,
-      "scripted run: ray trace a still at --size halfway through (as the panel's button does), save it as PNG");
+          "--still", view_extra.still_path,
+          "with --frames: ray trace a still at --size halfway through (as the panel's button does), save it as PNG")
+      ->needs(view_frames);
   view->add_flag("--error-plot", view_extra.error_plot,
                  "path trace a 64x64 reference of the camera at the start and plot the error against it");
-  view->add_flag("--exit", view_extra.exit_after, "quit after the scripted frames");
+  view->add_flag("--exit", view_extra.exit_after, "with --frames: quit after the scripted frames")->needs(view_frames);
   view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");
   view->add_option("--msaa", view_extra.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")
       ->check(CLI::Range(0, 16));
   trace_options trace_extra;
-  add_trace_options(*commands[2].app, trace_extra);
-  commands[2].app->add_option("--stats", trace_extra.stats_path,
-                              "write trace statistics (and the radiosity pass's) as JSON to this file");
+  CLI::App* trace = commands[2].app;
+  add_trace_options(*trace, trace_extra);
+  trace->add_option("--stats", trace_extra.stats_path,
+                    "write trace statistics (and the radiosity pass's) as JSON to this file");
   solve_options solve_extra;
-  commands[3].app->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
-  commands[3].app->add_option("--stats", solve_extra.stats_path, "write solver statistics as JSON to this file");
-  commands[3].app->add_flag("--reference", solve_extra.reference,
-                            "also solve the full matrix (small scenes) and report the difference");
-  commands[3].app->add_flag("--ray-baseline", solve_extra.ray_baseline,
-                            "replay 2M of the solver's shadow rays through Embree's rtcOccluded1 and compare rates");
+  CLI::App* solve = commands[3].app;
+  solve->add_option("--ply", solve_extra.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
+  solve->add_option("--stats", solve_extra.stats_path, "write solver statistics as JSON to this file");
+  solve->add_flag("--reference", solve_extra.reference,
+                  "also solve the full matrix (small scenes) and report the difference");
+  solve->add_flag("--ray-baseline", solve_extra.ray_baseline,
+                  "raycast: replay 2M of the solver's shadow rays through Embree's rtcOccluded1 and compare rates");
   CLI::App* bench = app.add_subcommand("bench", "measure speed against error: every method on every bench scene");
   bench_options bench_extra;
   add_bench_options(*bench, bench_extra);
@@ -348,8 +381,8 @@ int run_cli(int argc, char** argv) {
   compare
       ->add_option("--exclude-above", compare_bright,
                    "leave out pixels (and their neighbours) where the reference exceeds this radiance: emitters")
-      ->check(CLI::PositiveNumber);
-  compare->add_option("--downsample", compare_downsample, "box-filter N x N blocks of both first")
+      ->check(number_in(0.0, INFINITY, true));
+  compare->add_option("--downsample", compare_downsample, "box-filter N x N blocks of both first (N at most the size)")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
 
@@ -360,27 +393,30 @@ int run_cli(int argc, char** argv) {
     return code == 0 ? exit_ok : exit_usage;
   }
 
+  // Combinations in which an option would be accepted and then ignored.
+  auto usage_error = [](const std::string& message) {
+    std::cerr << "error: " << message << "\n";
+    return exit_usage;
+  };
+  for (const solving_command& c : commands)
+    if (c.app->parsed())
+      if (std::string e = check_solver_options(*c.app, c.solver); !e.empty()) return usage_error(e);
+  if (trace->parsed())
+    if (std::string e = check_trace_options(*trace, trace_extra); !e.empty()) return usage_error(e);
+  if (solve->parsed() && solve_extra.ray_baseline &&
+      commands[3].solver.form_factors.method != form_factor_method::raycast)
+    return usage_error("--ray-baseline applies to --method raycast only (the hemicube casts no shadow rays)");
+
   if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
   if (compare->parsed()) return run_compare(compare_test, compare_reference, compare_downsample, compare_bright);
-  if (view->parsed()) {
+  for (solving_command& c : commands) {
+    if (!c.app->parsed()) continue;
     scene s;
-    if (!load_for_command(commands[0].scene, &commands[0].camera, s)) return exit_input_error;
-    return run_viewer(s, commands[0].solver, view_extra);
-  }
-  if (render->parsed()) {
-    scene s;
-    if (!load_for_command(commands[1].scene, &commands[1].camera, s)) return exit_input_error;
-    return run_render(s, commands[1].solver, render_extra);
-  }
-  if (commands[2].app->parsed()) {
-    scene s;
-    if (!load_for_command(commands[2].scene, &commands[2].camera, s)) return exit_input_error;
-    return run_trace(s, commands[2].solver, trace_extra);
-  }
-  if (commands[3].app->parsed()) {
-    scene s;
-    if (!load_for_command(commands[3].scene, &commands[3].camera, s)) return exit_input_error;
-    return run_solve(s, commands[3].solver, solve_extra);
+    if (int code = load_for_command(c.scene, c.has_camera ? &c.camera : nullptr, s); code != exit_ok) return code;
+    if (c.app == view) return run_viewer(s, c.solver, view_extra);
+    if (c.app == render) return run_render(s, c.solver, render_extra);
+    if (c.app == trace) return run_trace(s, c.solver, trace_extra);
+    return run_solve(s, c.solver, solve_extra);
   }
   if (bench->parsed()) return run_bench_command(bench_extra);
 
@@ -388,7 +424,7 @@ int run_cli(int argc, char** argv) {
   // when there is a display, otherwise a headless render to bounce.png in
   // the current folder.
   scene s;
-  if (!load_for_command("", nullptr, s)) return exit_input_error;
+  if (int code = load_for_command("", nullptr, s); code != exit_ok) return code;
   const char* display = std::getenv("DISPLAY");
   if (display && *display) return run_viewer(s, solver_settings{}, viewer_options{});
   std::cout << "bounce: no display; rendering headless\n";

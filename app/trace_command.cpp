@@ -11,7 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "camera_math.h"
-
+#include "obj_io.h"
 #include "patch_mesh.h"
 #include "radiosity.h"
 #include "radiosity_field.h"
@@ -57,7 +57,7 @@ void add_trace_options(CLI::App& command, trace_options& options) {
       ->capture_default_str();
   command
       .add_option("--adaptive-spp", options.adaptive_spp,
-                  "trace pixels that differ from a neighbour again with this many samples (0: off)")
+                  "trace pixels that differ from a neighbour again with this many samples, more than --spp (0: off)")
       ->check(CLI::Range(0, 1 << 20));
   command
       .add_option("--depth", options.depth,
@@ -71,17 +71,48 @@ void add_trace_options(CLI::App& command, trace_options& options) {
                   "Whitted two-pass: direct light by shadow rays (sharp) or from the radiosity solution")
       ->check(CLI::IsMember({"rays", "radiosity"}))
       ->capture_default_str();
-  command.add_flag("--no-radiosity", options.no_radiosity, "one-pass Whitted with a constant ambient term");
+  command.add_flag("--no-radiosity", options.no_radiosity,
+                   "one-pass Whitted with a constant ambient term (solver options then set its coarse solution)");
   command
       .add_option("--ambient", options.ambient,
-                  "one-pass ambient irradiance (default: mean indirect irradiance of a coarse solution)")
-      ->check(CLI::NonNegativeNumber);
-  command.add_option("--seed", options.seed, "random seed: the picture depends on it alone")->capture_default_str();
+                  "with --no-radiosity: the ambient irradiance (default: mean indirect irradiance of a coarse "
+                  "solution)")
+      ->check(number_in(0.0, max_file_number));
+  command.add_option("--seed", options.seed, "random seed: the picture depends on it alone")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos
+                       ? std::string()
+                       : "'" + text + "' is not a whole number >= 0";
+          },
+          ">= 0"))
+      ->capture_default_str();
   command.add_flag("--ray-baseline", options.ray_baseline,
                    "also cast the pixel-centre rays alone (closest hit, no shading) and compare rates");
   command.add_option("--exposure", options.exposure, "PNG value = radiance x exposure")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in(min_exposure, max_exposure))
       ->capture_default_str();
+}
+
+std::string check_trace_options(const CLI::App& command, const trace_options& options) {
+  auto given = [&](const char* name) { return command.count(name) > 0; };
+  const bool path = options.integrator == "path";
+  if (path) {
+    for (const char* whitted_only : {"--light-samples", "--direct", "--no-radiosity", "--ambient"})
+      if (given(whitted_only)) return std::string(whitted_only) + " applies to --integrator whitted only";
+    if (std::string solver = given_options(command, solver_option_names()); !solver.empty())
+      return solver + ": the path tracer makes no radiosity pass (solver options apply to --integrator whitted)";
+  }
+  if (given("--ambient") && !options.no_radiosity) return "--ambient applies with --no-radiosity only";
+  if (options.no_radiosity && given("--direct"))
+    return "--direct applies to two-pass stills only, not with --no-radiosity";
+  if (options.no_radiosity && options.ambient)
+    if (std::string solver = given_options(command, solver_option_names()); !solver.empty())
+      return solver + ": with --no-radiosity and --ambient there is no radiosity pass";
+  if (options.adaptive_spp > 0 && options.adaptive_spp <= options.spp)
+    return "--adaptive-spp " + std::to_string(options.adaptive_spp) + " must be more than --spp " +
+           std::to_string(options.spp) + " (0: off)";
+  return {};
 }
 
 int run_trace(const scene& s, const solver_settings& solver, const trace_options& options) {
@@ -111,7 +142,7 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
       params.ambient_irradiance = rgb(*options.ambient);
     } else {
       solver_settings coarse = solver;
-      coarse.max_edge = 2.0 * default_max_edge(s);
+      if (coarse.max_edge <= 0.0) coarse.max_edge = 2.0 * default_max_edge(s);  // coarse, unless asked for
       if (!solve(s, coarse, pass)) return exit_input_error;
       params.ambient_irradiance = mean_indirect_irradiance(*pass.state);
     }

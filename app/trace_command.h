@@ -29,6 +29,11 @@ struct trace_options {
 
 void add_trace_options(CLI::App& command, trace_options& options);
 
+// Options the chosen integrator and passes would ignore (e.g. --ambient
+// without --no-radiosity, solver options with the path tracer); an error
+// message naming them, or an empty string.
+std::string check_trace_options(const CLI::App& command, const trace_options& options);
+
 int run_trace(const scene& s, const solver_settings& solver, const trace_options& options);
 
 }  // namespace bounce

@@ -2,11 +2,13 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -59,10 +61,13 @@ TEST(Cli, HelpListsEveryCommand) {
 TEST(Cli, SolvingCommandsShareOptions) {
   for (const char* command : {"view", "render", "trace", "solve"}) {
     run_result r = run(std::string(command) + " --help");
-    for (const char* option :
-         {"--method", "--max-edge", "--until", "--max-shots", "--time", "--eye", "--target", "--up", "--fov", "--size"})
+    for (const char* option : {"--method", "--max-edge", "--until", "--max-shots", "--time"})
       EXPECT_NE(r.out.find(option), std::string::npos) << command << " " << option;
+    // The camera options where a picture is made; solve makes none.
+    for (const char* option : {"--eye", "--target", "--up", "--fov", "--size"})
+      EXPECT_EQ(r.out.find(option) != std::string::npos, std::string(command) != "solve") << command << " " << option;
   }
+  EXPECT_EQ(run("solve --size 8x8").code, 2);
 }
 
 // --stats is offered only where a file gets written, and every command that
@@ -158,22 +163,215 @@ TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(run("info a.json b.json").code, 2);
 }
 
+// A bad camera override is a bad command line: exit 2, the option named.
 TEST(Cli, CameraOverridesAreChecked) {
-  run_result r = run("render --eye 1,2");
+  const std::pair<const char*, const char*> cases[] = {
+      {"render --eye 1,2", "--eye: expected x,y,z"},
+      {"render --eye 1,nan,3", "--eye: expected x,y,z (three finite numbers)"},
+      {"render --target inf,0,0", "--target: expected x,y,z"},
+      {"render --up 0,1e400,0", "--up: expected x,y,z"},
+      {"render --eye 2e9,0,0", "--eye: coordinate 2e+09 is out of range (limit 1e+09"},
+      {"render --size 640by480", "--size: expected WxH"},
+      {"render --size 0x480", "--size: size 0x480 must be from 1 to 16384"},
+      {"render --size 640x-1", "--size: size 640x-1 must be from 1 to 16384"},
+      {"trace --size 20000x10", "--size: size 20000x10 must be from 1 to 16384"},
+      {"view --size 16384x16384", "more than the limit of 33554432"},
+      {"trace --fov 200", "--fov: 200 is out of range: must be in (0, 180)"},
+      {"trace --fov 0", "--fov: 0 is out of range"},
+      {"trace --fov nan", "--fov: 'nan' is not a finite number"},
+      {"view --eye 278,273,0 --target 278,273,0", "eye and target are the same point"},
+  };
+  for (const auto& [args, message] : cases) {
+    run_result r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+// The limits apply to a scene file's own camera size too (it has no --size).
+TEST(Cli, SceneCameraSizeIsLimited) {
+  scratch_dir dir;
+  const std::string path = dir.write("big.json", R"({"materials": {"w": {"rho": [0.5,0.5,0.5]}},
+        "surfaces": [{"sphere": {"center": [0,0,0], "radius": 1}, "material": "w"}],
+        "lights": [{"position": [0,5,0], "intensity": [1,1,1]}],
+        "camera": {"eye": [0,0,5], "target": [0,0,0], "size": [16384, 16384]}})");
+  run_result r = run("trace " + path + " --integrator path");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("--eye: expected x,y,z"), std::string::npos) << r.err;
-  r = run("render --size 640by480");
+  EXPECT_NE(r.err.find(path + ": camera.size: size 16384x16384 has 268435456 pixels"), std::string::npos) << r.err;
+  // --size replaces it; the smallest picture is fine.
+  r = run("trace " + path + " --integrator path --size 1x1 --out " + dir.path("a.png"));
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+// Every floating-point option refuses NaN, infinities and literals beyond
+// a double (CLI11's own checks let NaN through: --exposure nan gave a black
+// picture, --patch-edge nan an unsubdivided mesh).
+TEST(Cli, EveryFloatingPointOptionRefusesNonFiniteNumbers) {
+  const char* options[] = {"solve --max-edge",
+                           "solve --until",
+                           "solve --time",
+                           "solve --patch-edge",
+                           "render --exposure",
+                           "trace --exposure",
+                           "trace --fov",
+                           "view --fov",
+                           "info --max-edge",
+                           "solve --adaptive --tolerance",
+                           "solve --adaptive --min-edge",
+                           "trace --no-radiosity --ambient",
+                           "compare a.pfm b.pfm --exclude-above"};
+  for (const char* option : options)
+    for (const char* value : {"nan", "inf", "-inf", "1e400", "NaN"}) {
+      run_result r = run(std::string(option) + " " + value);
+      EXPECT_EQ(r.code, 2) << option << " " << value;
+      const std::string name = std::string(option).substr(std::string(option).rfind(' ') + 1);
+      EXPECT_NE(r.err.find(name + ": '" + value + "' is not a finite number"), std::string::npos)
+          << option << " " << value << ": " << r.err;
+    }
+}
+
+// Range errors are short: the limits in %g, not DBL_MAX's 309 digits.
+TEST(Cli, RangeErrorsAreShort) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"solve --max-edge -1", "--max-edge: -1 is out of range: must be > 0"},
+      {"solve --time -1", "--time: -1 is out of range: must be >= 0"},
+      {"solve --patch-edge -0.5", "--patch-edge: -0.5 is out of range: must be >= 0"},
+      {"solve --until 2", "--until: 2 is out of range: must be in [0, 1]"},
+      {"render --exposure 0", "--exposure: 0 is out of range: must be in [1e-09, 1e+09]"},
+      {"render --exposure 1e10", "--exposure: 1e+10 is out of range: must be in [1e-09, 1e+09]"},
+      {"trace --no-radiosity --ambient 1e10", "--ambient: 1e+10 is out of range: must be in [0, 1e+09]"},
+      {"solve --max-shots -1", "--max-shots: '-1' is not a whole number"},
+      {"trace --seed -1", "--seed: '-1' is not a whole number"},
+  };
+  for (const auto& [args, message] : cases) {
+    run_result r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    EXPECT_LT(r.err.size(), 200u) << args << ": " << r.err;
+  }
+}
+
+// An option that a combination would ignore is refused, naming it, before
+// anything is loaded or solved.
+TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"render --frame-every 3", "--frame-every requires --frames"},
+      {"view --screenshot a.png", "--screenshot requires --frames"},
+      {"view --still a.png", "--still requires --frames"},
+      {"view --exit", "--exit requires --frames"},
+      {"solve --tolerance 0.3", "--tolerance requires --adaptive"},
+      {"render --min-edge 5", "--min-edge requires --adaptive"},
+      {"solve --method hemicube --rays 4", "--rays applies to --method raycast only"},
+      {"trace --method hemicube --full-rays", "--full-rays applies to --method raycast only"},
+      {"view --hemicube 64", "--hemicube applies to --method hemicube only"},
+      {"solve --method hemicube --ray-baseline", "--ray-baseline applies to --method raycast only"},
+      {"trace --integrator path --light-samples 3", "--light-samples applies to --integrator whitted only"},
+      {"trace --integrator path --direct radiosity", "--direct applies to --integrator whitted only"},
+      {"trace --integrator path --no-radiosity", "--no-radiosity applies to --integrator whitted only"},
+      {"trace --integrator path --max-edge 100 --until 0.1", "--max-edge, --until: the path tracer makes no radiosity"},
+      {"trace --ambient 0.5", "--ambient applies with --no-radiosity only"},
+      {"trace --no-radiosity --direct rays", "--direct applies to two-pass stills only"},
+      {"trace --no-radiosity --ambient 0.5 --max-shots 9", "--max-shots: with --no-radiosity and --ambient"},
+      {"trace --spp 4 --adaptive-spp 4", "--adaptive-spp 4 must be more than --spp 4"},
+      {"trace --integrator path --spp 8 --adaptive-spp 2", "--adaptive-spp 2 must be more than --spp 8"},
+      {"bench --report-only --suite full", "--suite excludes --report-only"},
+  };
+  for (const auto& [args, message] : cases) {
+    run_result r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+// --max-edge with --no-radiosity sets the coarse solution the ambient term
+// comes from (it was replaced by twice the default).
+TEST(Cli, OnePassAmbientSolutionTakesTheMaxEdge) {
+  scratch_dir dir;
+  const std::string fast = " --until 0.2 --size 8x8 --out " + dir.path("a.png");
+  run_result r = run("trace --no-radiosity --max-edge 150" + fast + " --stats " + dir.path("a.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("solve --max-edge 150 --until 0.2 --stats " + dir.path("b.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto one_pass = nlohmann::json::parse(slurp(dir.path("a.json")));
+  const auto solved = nlohmann::json::parse(slurp(dir.path("b.json")));
+  EXPECT_EQ(one_pass["radiosity"]["elements"], solved["elements"]);
+  r = run("trace --no-radiosity" + fast + " --stats " + dir.path("c.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(nlohmann::json::parse(slurp(dir.path("c.json")))["radiosity"]["elements"], solved["elements"]);
+}
+
+// The element-count estimate of a tiny --max-edge is computed in double.
+TEST(Cli, TinyMaxEdgeReportsAPositiveEstimate) {
+  run_result r = run("solve --max-edge 1e-9");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("--size: expected WxH"), std::string::npos) << r.err;
-  r = run("render --size 0x480");
+  EXPECT_NE(r.err.find("max edge 1e-09 would make about "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("about -"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("e+24 elements (limit 5000000)"), std::string::npos) << r.err;
+  r = run("solve --max-edge 1e-200");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("camera: size 0x480"), std::string::npos) << r.err;
-  r = run("trace --fov 200");
+  EXPECT_NE(r.err.find("would make more than 1e+308 elements"), std::string::npos) << r.err;
+}
+
+// Warnings said before a failure come first, then the error.
+TEST(Cli, WarningsBeforeTheError) {
+  scratch_dir dir;
+  dir.write("m.mtl", "newmtl e\nKe 1 1 1\nKa 0 0 0\n");
+  const std::string path = dir.write("w.obj", "mtllib m.mtl\nusemtl e\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nv 1 x 0\n");
+  run_result r = run("info " + path);
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("--fov"), std::string::npos) << r.err;
-  r = run("view --eye 278,273,0 --target 278,273,0");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("eye and target are the same point"), std::string::npos) << r.err;
+  const std::size_t warning = r.err.find("warning: "), error = r.err.find("error: " + path + ":7:");
+  ASSERT_NE(warning, std::string::npos) << r.err;
+  ASSERT_NE(error, std::string::npos) << r.err;
+  EXPECT_LT(warning, error) << r.err;
+}
+
+// An emitter facing away from everything: every command that loads says so.
+TEST(Cli, EmitterFacingAwayIsWarnedAbout) {
+  scratch_dir dir;
+  const std::string path = dir.write("away.json", R"({"materials": {"w": {"rho": [0.5,0.5,0.5]}, "e": {"ke": [9,9,9]}},
+      "surfaces": [{"name": "floor", "polygon": [[0,0,0],[0,0,1],[1,0,1],[1,0,0]], "material": "w"},
+                   {"name": "lamp", "polygon": [[0.4,1,0.4],[0.4,1,0.6],[0.6,1,0.6],[0.6,1,0.4]], "material": "e"}]})");
+  const std::string commands[] = {"info", "solve --max-shots 5",
+                                  "render --max-shots 5 --size 8x8 --out " + dir.path("r.png"),
+                                  "trace --max-shots 5 --size 8x8 --out " + dir.path("t.png")};
+  for (const std::string& command : commands) {
+    run_result r = run(command + " " + path);
+    EXPECT_EQ(r.code, 0) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("warning: " + path +
+                         ": surface 'lamp' emits (material 'e') but faces away from every other "
+                         "surface: its light reaches nothing"),
+              std::string::npos)
+        << command << ": " << r.err;
+  }
+}
+
+// compare refuses pictures it cannot measure instead of printing 0 or -nan.
+TEST(Cli, CompareRefusesNonFinitePixelsAndOversizedDownsampling) {
+  scratch_dir dir;
+  // 4x2 PFM (rows bottom to top); the second value of the top row's first pixel is NaN.
+  auto pfm = [&](const std::string& name, float bad) {
+    std::string bytes = "PF\n4 2\n-1.0\n";
+    std::vector<float> values(4 * 2 * 3, 0.5f);
+    values[4 * 3 + 1] = bad;  // second row in the file: the top row
+    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
+    return dir.write(name, bytes);
+  };
+  const std::string good = pfm("good.pfm", 0.5f), nan = pfm("nan.pfm", NAN), inf = pfm("inf.pfm", INFINITY);
+  run_result r = run("compare " + good + " " + good);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("relative RMSE 0.00000"), std::string::npos) << r.out;
+  for (const std::string& bad : {nan, inf}) {
+    r = run("compare " + bad + " " + good);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("error: " + bad + ": pixel (0,0) is not a finite number"), std::string::npos) << r.err;
+    r = run("compare " + good + " " + bad);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("error: " + bad + ": pixel (0,0)"), std::string::npos) << r.err;
+  }
+  r = run("compare " + good + " " + good + " --downsample 3");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--downsample 3 is larger than the pictures (4x2)"), std::string::npos) << r.err;
+  EXPECT_EQ(run("compare " + good + " " + good + " --downsample 2").code, 0);
 }
 
 // The quick suite as a smoke test (its times are not checked): every

@@ -1,0 +1,207 @@
+#include "bench_suites.h"
+
+#include <cstdio>
+#include <initializer_list>
+#include <stdexcept>
+
+#include "scene_io.h"
+
+namespace bounce {
+namespace {
+
+const bench_scene bench_scenes[] = {
+    {"cornell", default_scene_path, exact_kind::none},
+    {"occluders", "embedded:bench/occluders.json", exact_kind::none},
+    {"furnace", "embedded:bench/furnace.json", exact_kind::furnace},
+    {"furnace-0.99", "embedded:bench/furnace_099.json", exact_kind::furnace},
+    {"sphere", "embedded:bench/sphere.json", exact_kind::sphere_interior},
+    {"squares-perpendicular", "embedded:bench/squares_perpendicular.json", exact_kind::emitter_receiver},
+    {"squares-parallel", "embedded:bench/squares_parallel.json", exact_kind::emitter_receiver},
+};
+
+// A progressive run: `rays` shadow rays (raycast) or a hemicube of
+// `hemicube` pixels, at `edge`, patches of `patch_factor` x edge (0:
+// elements shoot).
+bench_case progressive_case(const std::string& scene, form_factor_method method, int rays, int hemicube, double edge,
+                            double patch_factor, double until, double max_seconds) {
+  bench_case c;
+  c.scene = scene;
+  c.settings.form_factors.method = method;
+  c.settings.form_factors.shadow_rays = rays;
+  c.settings.form_factors.hemicube_resolution = hemicube;
+  c.settings.max_edge = edge;
+  c.settings.patch_edge = patch_factor * edge;
+  c.settings.stop.unshot_fraction = until;
+  c.settings.stop.seconds = max_seconds;
+  return c;
+}
+
+// Progressive runs of one scene: every method setting at every density.
+void add_progressive(suite_plan& plan, const std::string& scene, std::initializer_list<double> edges,
+                     std::initializer_list<int> rays, std::initializer_list<int> hemicubes, double max_seconds,
+                     double until = 1e-3) {
+  for (double edge : edges) {
+    for (int r : rays)
+      plan.cases.push_back(progressive_case(scene, form_factor_method::raycast, r, 256, edge, 4.0, until, max_seconds));
+    for (int h : hemicubes)
+      plan.cases.push_back(progressive_case(scene, form_factor_method::hemicube, 16, h, edge, 4.0, until, max_seconds));
+  }
+}
+
+// Adaptive meshing on the Cornell box from coarse starting meshes, 16 rays,
+// elements shooting (the --adaptive default: shooters refine with them).
+void add_adaptive(suite_plan& plan, std::initializer_list<double> edges, std::initializer_list<double> tolerances,
+                  double max_seconds, double patch_factor = 0.0) {
+  for (double edge : edges)
+    for (double tolerance : tolerances) {
+      bench_case c =
+          progressive_case("cornell", form_factor_method::raycast, 16, 256, edge, patch_factor, 1e-3, max_seconds);
+      c.settings.adaptive.enabled = true;
+      c.settings.adaptive.tolerance = tolerance;
+      plan.cases.push_back(c);
+    }
+}
+
+void add_reference(suite_plan& plan, const std::string& scene, double edge) {
+  bench_case c;
+  c.scene = scene;
+  c.kind = bench_solver::reference;
+  c.settings.max_edge = edge;
+  plan.cases.push_back(c);
+}
+
+void add_path(suite_plan& plan, const std::string& scene, double max_seconds) {
+  bench_case c;
+  c.scene = scene;
+  c.kind = bench_solver::path_tracer;
+  c.settings.stop.seconds = max_seconds;
+  plan.cases.push_back(c);
+}
+
+void add_growth(suite_plan& plan, std::initializer_list<double> edges, double max_seconds) {
+  for (double edge : edges) {
+    bench_case c = progressive_case("cornell", form_factor_method::raycast, 16, 256, edge, 4.0, 0.01, max_seconds);
+    c.growth = true;
+    plan.cases.push_back(c);
+  }
+}
+
+}  // namespace
+
+const bench_scene& find_scene(const std::string& name) {
+  for (const bench_scene& s : bench_scenes)
+    if (name == s.name) return s;
+  throw std::logic_error("bench: no scene " + name);
+}
+
+suite_plan make_suite(const std::string& suite) {
+  suite_plan plan;
+  if (suite == "quick") {
+    // A smoke run: every scene and method once, small meshes, short runs.
+    add_progressive(plan, "cornell", {150}, {4, 16}, {64}, 3.0);
+    add_progressive(plan, "cornell", {60}, {16}, {}, 3.0);
+    add_reference(plan, "cornell", 150);
+    add_path(plan, "cornell", 2.0);
+    add_progressive(plan, "occluders", {0.5}, {16}, {}, 2.0);
+    add_path(plan, "occluders", 1.0);
+    add_progressive(plan, "furnace", {0.5}, {16}, {64}, 2.0);
+    add_reference(plan, "furnace", 0.5);
+    add_progressive(plan, "furnace-0.99", {0.5}, {16}, {}, 2.0);
+    add_progressive(plan, "sphere", {0.5}, {16}, {}, 2.0);
+    add_progressive(plan, "squares-perpendicular", {0.1}, {16}, {64}, 2.0);
+    add_progressive(plan, "squares-parallel", {0.1}, {16}, {}, 2.0);
+    add_growth(plan, {150, 100}, 5.0);
+    add_adaptive(plan, {150}, {0.5}, 3.0);
+    plan.picture_size = 64;
+    plan.reference_spp = 1024;
+    return plan;
+  }
+  if (suite == "adaptive") {
+    // Adaptive against uniform meshes on the Cornell box, 16 rays: the
+    // full suite's Cornell picture and reference.
+    add_progressive(plan, "cornell", {100, 60, 40, 30}, {16}, {}, 25.0);
+    // 15 mm given the time to converge (to 1e-3 unshot: about 100 s), so
+    // that the best uniform error is the mesh's, not the time limit's.
+    plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 16, 256, 15, 4.0, 1e-3, 150.0));
+    add_adaptive(plan, {100, 60}, {0.5, 1.0}, 40.0);
+    plan.picture_size = 128;
+    plan.reference_spp = 4096;
+    return plan;
+  }
+  // full
+  add_adaptive(plan, {100, 60}, {0.5}, 25.0);
+  add_progressive(plan, "cornell", {100, 60, 30}, {4, 16, 64}, {}, 25.0);
+  add_progressive(plan, "cornell", {40}, {4, 16}, {}, 25.0);  // 40 mm: the scene's default element size
+  add_progressive(plan, "cornell", {60}, {}, {64, 128, 256}, 25.0);
+  add_progressive(plan, "cornell", {30}, {}, {128}, 25.0);
+  plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 16, 256, 60, 0.0, 1e-3, 25.0));
+  add_reference(plan, "cornell", 100);
+  add_reference(plan, "cornell", 60);
+  add_path(plan, "cornell", 40.0);
+  add_progressive(plan, "occluders", {0.27, 0.135}, {4, 16}, {}, 20.0);
+  add_progressive(plan, "occluders", {0.27}, {}, {128}, 20.0);
+  add_path(plan, "occluders", 20.0);
+  add_progressive(plan, "furnace", {0.5, 0.25}, {4, 16}, {64, 256}, 10.0);
+  add_reference(plan, "furnace", 0.5);
+  add_progressive(plan, "furnace-0.99", {0.5}, {16}, {}, 40.0);
+  add_reference(plan, "furnace-0.99", 0.5);
+  add_progressive(plan, "sphere", {0.5, 0.25}, {16}, {}, 15.0);
+  add_progressive(plan, "sphere", {0.25}, {}, {128}, 15.0);
+  add_reference(plan, "sphere", 0.5);
+  add_progressive(plan, "squares-perpendicular", {0.1, 0.05}, {1, 16}, {64, 256}, 10.0);
+  add_progressive(plan, "squares-parallel", {0.1, 0.05}, {16}, {256}, 10.0);
+  plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 4, 256, 15, 4.0, 1e-3, 60.0));
+  add_growth(plan, {70, 30, 15, 7.5}, 90.0);
+  plan.picture_size = 128;
+  plan.reference_spp = 4096;
+  return plan;
+}
+
+const char* solver_name(bench_solver s) {
+  switch (s) {
+    case bench_solver::progressive:
+      return "progressive";
+    case bench_solver::reference:
+      return "reference";
+    case bench_solver::path_tracer:
+      return "path";
+  }
+  return "";
+}
+
+std::string method_label(const bench_case& c) {
+  return c.kind == bench_solver::path_tracer ? "path" : std::string(name_of(c.settings.form_factors.method));
+}
+
+// The label of a curve: its method with the setting that matters for it.
+std::string curve_label(const bench_case& c, const std::string& curve_method) {
+  char buffer[160];
+  if (c.kind == bench_solver::path_tracer) return "path tracer";
+  const form_factor_params& ff = c.settings.form_factors;
+  std::string setting;
+  if (c.kind == bench_solver::progressive)
+    setting = " " + std::to_string(ff.method == form_factor_method::hemicube ? ff.hemicube_resolution : ff.shadow_rays);
+  char adaptive[48] = "";
+  if (c.settings.adaptive.enabled)
+    std::snprintf(adaptive, sizeof adaptive, ", adaptive %g", c.settings.adaptive.tolerance);
+  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s%s", setting.c_str(), c.settings.max_edge,
+                c.kind == bench_solver::progressive && c.settings.patch_edge == 0.0 ? ", element shooters" : "",
+                adaptive, c.growth ? ", growth" : "");
+  std::string base = curve_method;
+  const std::size_t plus = base.find(" + ");
+  const std::string suffix = plus == std::string::npos ? "" : base.substr(plus);
+  if (plus != std::string::npos) base.resize(plus);
+  return base + buffer + suffix;
+}
+
+bool load_bench_scene(const bench_case& c, int picture_size, scene& s, std::string& error) {
+  load_report report;
+  if (!load_scene(find_scene(c.scene).path, s, report)) {
+    error = report.error;
+    return false;
+  }
+  s.view.width = s.view.height = picture_size;
+  return true;
+}
+
+}  // namespace bounce

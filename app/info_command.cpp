@@ -1,0 +1,78 @@
+#include "info_command.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "scene_info.h"
+
+namespace bounce {
+namespace {
+
+std::string format_vec3(const vec3& v) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
+  return buffer;
+}
+
+}  // namespace
+
+int run_info(const std::string& path, bool as_json, double max_edge) {
+  scene s;
+  if (int code = load_for_command(path, nullptr, s); code != exit_ok) return code;
+  double edge = max_edge > 0.0 ? max_edge : default_max_edge(s);
+  scene_summary sum;
+  if (std::string e = summarize_scene(s, edge, sum); !e.empty()) {
+    std::cerr << "error: " << s.source << ": " << e << "\n";
+    return exit_input_error;
+  }
+  if (as_json) {
+    nlohmann::json j = {
+        {"scene", s.source},
+        {"surfaces", sum.surfaces},
+        {"polygon_meshes", sum.polygon_meshes},
+        {"spheres", sum.spheres},
+        {"quadrics", sum.quadrics},
+        {"bezier_surfaces", sum.bezier_surfaces},
+        {"bspline_surfaces", sum.bspline_surfaces},
+        {"polygons", sum.polygons},
+        {"patches", sum.patches},
+        {"triangles", sum.triangles},
+        {"max_edge", sum.max_edge},
+        {"materials", sum.materials},
+        {"textures", sum.textures},
+        {"emitting_materials", sum.emitting_materials},
+        {"emitting_surfaces", sum.emitting_surfaces},
+        {"point_lights", sum.point_lights},
+        {"bounds",
+         {{"min", {sum.bounds.min.x, sum.bounds.min.y, sum.bounds.min.z}},
+          {"max", {sum.bounds.max.x, sum.bounds.max.y, sum.bounds.max.z}}}},
+        {"camera",
+         {{"eye", {s.view.eye.x, s.view.eye.y, s.view.eye.z}},
+          {"target", {s.view.target.x, s.view.target.y, s.view.target.z}},
+          {"up", {s.view.up.x, s.view.up.y, s.view.up.z}},
+          {"fov", s.view.fov_y_degrees},
+          {"size", {s.view.width, s.view.height}}}},
+    };
+    std::cout << j.dump(2) << "\n";
+    return exit_ok;
+  }
+  std::cout << "scene:      " << s.source << "\n"
+            << "surfaces:   " << sum.surfaces << " (polygon meshes " << sum.polygon_meshes << ", spheres "
+            << sum.spheres << ", quadrics " << sum.quadrics << ", Bezier " << sum.bezier_surfaces << ", B-spline "
+            << sum.bspline_surfaces << ")\n"
+            << "polygons:   " << sum.polygons << "\n"
+            << "patches:    " << sum.patches << " (Bezier patches + B-spline spans)\n"
+            << "triangles:  " << sum.triangles << " (curved surfaces tessellated at max edge " << sum.max_edge << ")\n"
+            << "materials:  " << sum.materials << " (" << sum.emitting_materials << " emitting), textures "
+            << sum.textures << "\n"
+            << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)\n"
+            << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
+            << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
+            << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";
+  return exit_ok;
+}
+
+}  // namespace bounce
