@@ -17,11 +17,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bench.h"
 #include "bench_references.h"
 #include "bench_suites.h"
 #include "cli.h"
-#include "scene_io.h"
+#include "measure/bench.h"
+#include "scene/scene_io.h"
 
 extern char** environ;
 

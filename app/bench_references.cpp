@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "image.h"
+#include "image/image.h"
 
 namespace bounce {
 

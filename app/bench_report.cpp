@@ -14,8 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench.h"
 #include "bench_command.h"
+#include "measure/bench.h"
 
 namespace bounce {
 namespace {

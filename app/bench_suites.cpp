@@ -4,7 +4,7 @@
 #include <initializer_list>
 #include <stdexcept>
 
-#include "scene_io.h"
+#include "scene/scene_io.h"
 
 namespace bounce {
 namespace {

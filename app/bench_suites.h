@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "bench.h"
-#include "scene.h"
-#include "solver_settings.h"
+#include "measure/bench.h"
+#include "radiosity/solver_settings.h"
+#include "scene/scene.h"
 
 namespace bounce {
 

@@ -6,8 +6,8 @@
 #include <span>
 #include <string>
 
-#include "scene.h"
-#include "solver_settings.h"
+#include "radiosity/solver_settings.h"
+#include "scene/scene.h"
 
 namespace CLI {
 class App;

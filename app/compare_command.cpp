@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "cli.h"
-#include "image.h"
-#include "image_metrics.h"
+#include "image/image.h"
+#include "image/image_metrics.h"
 
 namespace bounce {
 namespace {

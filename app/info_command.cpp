@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
-#include "scene_info.h"
+#include "scene/scene_info.h"
 
 namespace bounce {
 namespace {

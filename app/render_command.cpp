@@ -8,11 +8,11 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "camera_math.h"
+#include "mesh/patch_mesh.h"
 #include "offscreen_view.h"
 #include "panel.h"
-#include "patch_mesh.h"
-#include "radiosity.h"
+#include "radiosity/radiosity.h"
+#include "scene/camera_math.h"
 #include "solver_stats.h"
 
 namespace bounce {

@@ -8,12 +8,12 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
-#include "bench.h"
-#include "occlusion.h"
-#include "patch_mesh.h"
-#include "ply.h"
-#include "radiosity.h"
-#include "reference_solver.h"
+#include "measure/bench.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/occlusion.h"
+#include "radiosity/radiosity.h"
+#include "radiosity/reference_solver.h"
+#include "scene/ply.h"
 #include "solver_stats.h"
 
 namespace bounce {

@@ -10,14 +10,14 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
-#include "camera_math.h"
-#include "obj_io.h"
-#include "patch_mesh.h"
-#include "radiosity.h"
-#include "radiosity_field.h"
-#include "ray_tracer.h"
-#include "scene_info.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/radiosity.h"
+#include "radiosity/radiosity_field.h"
+#include "scene/camera_math.h"
+#include "scene/obj_io.h"
+#include "scene/scene_info.h"
 #include "solver_stats.h"
+#include "trace/ray_tracer.h"
 
 namespace bounce {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "patch_mesh.h"
-#include "scene.h"
+#include "mesh/patch_mesh.h"
+#include "scene/scene.h"
 
 namespace bounce::testing {
 

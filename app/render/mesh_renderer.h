@@ -9,8 +9,8 @@
 
 #include <glm/mat4x4.hpp>
 
-#include "patch_mesh.h"
-#include "radiosity.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/radiosity.h"
 
 namespace bounce::gl {
 

@@ -4,7 +4,7 @@
 #include <span>
 #include <string>
 
-#include "embedded.h"
+#include "base/embedded.h"
 #include "gl_program.h"
 
 namespace bounce {

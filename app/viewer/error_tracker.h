@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "background_worker.h"
-#include "bench.h"
+#include "base/background_worker.h"
+#include "measure/bench.h"
 #include "solver_worker.h"
 
 namespace bounce {

@@ -3,8 +3,8 @@
 // actions through its shortcut (shortcuts() in panel.h).
 #pragma once
 
-#include "orbit.h"
 #include "panel.h"
+#include "scene/orbit.h"
 
 struct GLFWwindow;
 

@@ -8,7 +8,7 @@
 
 #include "error_tracker.h"
 #include "mesh_renderer.h"
-#include "solver_settings.h"
+#include "radiosity/solver_settings.h"
 #include "solver_worker.h"
 
 namespace bounce {

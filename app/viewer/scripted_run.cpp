@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "image.h"
+#include "image/image.h"
 #include "viewer.h"
 
 namespace bounce {

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "scene_io.h"
+#include "scene/scene_io.h"
 
 namespace bounce {
 

@@ -16,10 +16,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "patch_mesh.h"
-#include "radiosity.h"
-#include "scene.h"
-#include "solver_settings.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/radiosity.h"
+#include "radiosity/solver_settings.h"
+#include "scene/scene.h"
 
 namespace bounce {
 

@@ -8,11 +8,11 @@
 #include <mutex>
 #include <string>
 
-#include "background_worker.h"
-#include "image.h"
-#include "patch_mesh.h"
-#include "radiosity.h"
-#include "ray_tracer.h"
+#include "base/background_worker.h"
+#include "image/image.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/radiosity.h"
+#include "trace/ray_tracer.h"
 
 namespace bounce {
 

@@ -13,13 +13,13 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "camera_math.h"
 #include "error_tracker.h"
-#include "image.h"
+#include "image/image.h"
 #include "input.h"
 #include "mesh_renderer.h"
-#include "orbit.h"
 #include "panel.h"
+#include "scene/camera_math.h"
+#include "scene/orbit.h"
 #include "scripted_run.h"
 #include "solver_worker.h"
 #include "still_job.h"

@@ -9,7 +9,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "image.h"
+#include "image/image.h"
 
 namespace bounce {
 namespace {

@@ -1,0 +1,92 @@
+#include "image/image.h"
+
+#include <bit>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include "image/tonemap.h"
+
+namespace bounce {
+
+bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,
+               std::string& error) {
+  if (!stbi_write_png(path.c_str(), width, height, channels, rows, width * channels)) {
+    error = path + ": cannot write PNG";
+    return false;
+  }
+  return true;
+}
+
+std::vector<unsigned char> to_srgb_rows(const image& img, double exposure) {
+  std::vector<unsigned char> rows(std::size_t(img.width) * img.height * 3);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const glm::u8vec3 c = to_srgb8(img.at(x, y), exposure);
+      const std::size_t i = (std::size_t(y) * img.width + x) * 3;
+      rows[i] = c.r;
+      rows[i + 1] = c.g;
+      rows[i + 2] = c.b;
+    }
+  return rows;
+}
+
+bool write_pfm(const std::string& path, const image& img, std::string& error) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    error = path + ": cannot open for writing";
+    return false;
+  }
+  static_assert(std::endian::native == std::endian::little, "PFM writer assumes a little-endian machine");
+  out << "PF\n" << img.width << " " << img.height << "\n-1.0\n";  // negative scale: little-endian
+  for (int y = img.height - 1; y >= 0; --y)
+    out.write(reinterpret_cast<const char*>(&img.pixels[std::size_t(y) * img.width * 3]),
+              std::streamsize(sizeof(float) * 3 * img.width));
+  if (!out) {
+    error = path + ": write failed";
+    return false;
+  }
+  return true;
+}
+
+bool read_pfm(const std::string& path, image& img, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  double scale = 0.0;
+  int w = 0, h = 0;
+  if (!(in >> magic >> w >> h >> scale) || magic != "PF" || w <= 0 || h <= 0 || w > 65536 || h > 65536 ||
+      scale >= 0.0) {
+    error = path + ": not a little-endian colour PFM";
+    return false;
+  }
+  in.get();  // the single whitespace after the header
+  img.width = w;
+  img.height = h;
+  img.pixels.assign(std::size_t(w) * h * 3, 0.0f);
+  for (int y = h - 1; y >= 0; --y)
+    if (!in.read(reinterpret_cast<char*>(&img.pixels[std::size_t(y) * w * 3]),
+                 std::streamsize(sizeof(float) * 3 * w))) {
+      error = path + ": truncated PFM";
+      return false;
+    }
+  return true;
+}
+
+bool read_png_rgb8(const std::string& path, int& width, int& height, std::vector<unsigned char>& rgb8,
+                   std::string& error) {
+  int channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &width, &height, &channels, 3);
+  if (!data) {
+    error = path + ": cannot read image: " + stbi_failure_reason();
+    return false;
+  }
+  rgb8.assign(data, data + std::size_t(width) * height * 3);
+  stbi_image_free(data);
+  return true;
+}
+
+}  // namespace bounce

@@ -1,0 +1,29 @@
+// Display encoding shared by every picture Bounce writes: linear radiance
+// times an exposure, then sRGB. The GLSL in shaders/ mirrors these.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "scene/scene.h"
+
+namespace bounce {
+
+// sRGB transfer function of a linear value in [0, 1].
+double linear_to_srgb(double linear);
+
+// Radiance -> 8-bit sRGB: multiply by exposure, clamp to [0, 1], encode.
+glm::u8vec3 to_srgb8(const rgb& radiance, double exposure);
+
+// An exposure that maps the 95th percentile of the luminance of the given
+// radiances to 0.8 (emitters excluded by the caller); 1 when all are black.
+double auto_exposure(std::span<const rgb> radiance);
+
+// Rec. 709 luminance.
+inline double luminance(const rgb& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+}  // namespace bounce

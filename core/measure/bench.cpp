@@ -1,0 +1,210 @@
+#include "measure/bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "measure/run_clock.h"
+#include "radiosity/radiosity.h"
+#include "radiosity/reference_solver.h"
+
+namespace bounce {
+namespace {
+
+// Compares per-vertex solutions with the closed form.
+struct vertex_judge {
+  const scene& s;
+  exact_kind kind;
+  std::vector<rgb> exact;
+  double exact_power = 0.0;
+  const patch_mesh* exact_for = nullptr;  // adaptive meshing changes the mesh: the exact values follow
+  std::size_t exact_vertices = 0;
+
+  vertex_judge(const scene& source, exact_kind k) : s(source), kind(k) {}
+
+  void judge(const patch_mesh& mesh, std::span<const rgb> radiosity, bench_point& p) {
+    if (exact_for != &mesh || exact_vertices != mesh.vertex_count()) {  // (a new mesh may reuse an address)
+      exact = exact_vertex_radiosity(kind, s, mesh);
+      exact_power = channel_sum(exact_reflected_power(kind, s, mesh));
+      exact_for = &mesh;
+      exact_vertices = mesh.vertex_count();
+    }
+    const vertex_error e = vertex_relative_error(radiosity, exact);
+    p.error = e.rmse;
+    p.max_error = e.max;
+    p.power_error = std::abs(channel_sum(reflected_power(mesh, radiosity)) / exact_power - 1.0);
+  }
+};
+
+bool all_emission_shot(const radiosity_state& state) {
+  if (!state.lights_shot) return false;
+  return std::all_of(state.unshot_emission.begin(), state.unshot_emission.end(),
+                     [](const rgb& u) { return u.r == 0.0 && u.g == 0.0 && u.b == 0.0; });
+}
+
+bench_result run_progressive(const scene& s, const bench_setting& setting, const bench_truth& truth) {
+  bench_result result;
+  run_clock clock;
+  patch_mesh mesh;
+  if (!make_patch_mesh(s, mesher_params_for(setting.solver, s), mesh, result.error)) return result;
+  auto state = make_radiosity_state(s, mesh, radiosity_params_for(setting.solver));
+  result.setup_seconds = clock.wall();
+  result.elements = mesh.element_count();
+  result.vertices = mesh.vertex_count();
+  result.patches = mesh.patch_count();
+
+  std::unique_ptr<picture_judge> pictures;
+  std::unique_ptr<vertex_judge> vertices;
+  if (setting.measure_error) {
+    clock.exclude([&] {
+      if (truth.exact == exact_kind::none)
+        pictures = std::make_unique<picture_judge>(s, truth);
+      else
+        vertices = std::make_unique<vertex_judge>(s, truth.exact);
+    });
+  }
+  const std::string method(name_of(setting.solver.form_factors.method));
+  result.curves.push_back({method, {}});
+  if (pictures) result.curves.push_back({method + " + two-pass", {}});
+
+  auto record = [&] {
+    bench_point p;
+    p.seconds = clock.wall();
+    p.cpu_seconds = clock.cpu();
+    p.shots = state->stats.shots;
+    p.rays = state->stats.rays;
+    p.unshot_fraction = state->stats.unshot_fraction;
+    p.balance_error = balance_error(state->balance);
+    p.elements = state->mesh->element_count();
+    clock.exclude([&] {
+      const patch_mesh& mesh = *state->mesh;  // refined, with adaptive meshing
+      if (vertices) vertices->judge(mesh, state->radiosity, p);
+      if (!pictures) return;
+      bench_point two_pass = p;
+      const auto view = pictures->judge_solution(mesh, state->radiosity, {}, diffuse_source::radiosity);
+      p.error = view.error;
+      p.max_error = view.max_error;
+      const auto still = pictures->judge_solution(mesh, state->radiosity, state->direct, diffuse_source::traced_direct);
+      two_pass.seconds += still.seconds;
+      two_pass.cpu_seconds += still.cpu_seconds;
+      two_pass.error = still.error;
+      two_pass.max_error = still.max_error;
+      result.curves[1].points.push_back(two_pass);
+    });
+    result.curves[0].points.push_back(p);
+  };
+
+  // Stops spaced by a factor in time, so that a run of any length gives a
+  // few dozen points evenly on the log-log plot.
+  constexpr double stop_spacing = 1.25;
+  double next_stop = 0.0;
+  bool more = true;
+  while (more) {
+    more = step_radiosity(*state);
+    const double t = clock.wall();
+    if (std::isnan(result.first_picture_seconds) && all_emission_shot(*state)) result.first_picture_seconds = t;
+    const bool done = !more || stop_reached(*state, setting.solver.stop);
+    if (done || t >= next_stop) {
+      record();
+      next_stop = std::max(t * stop_spacing, t + 1e-3);
+    }
+    if (done) break;
+  }
+  if (state->stats.shots > 0) result.seconds_per_shot = state->stats.seconds / double(state->stats.shots);
+  result.elements = state->mesh->element_count();  // adaptive: the refined mesh's
+  result.vertices = state->mesh->vertex_count();
+  return result;
+}
+
+bench_result run_reference(const scene& s, const bench_setting& setting, const bench_truth& truth) {
+  bench_result result;
+  run_clock clock;
+  patch_mesh mesh;
+  if (!make_patch_mesh(s, mesher_params_for(setting.solver, s), mesh, result.error)) return result;
+  result.elements = mesh.element_count();
+  result.vertices = mesh.vertex_count();
+  result.patches = mesh.element_count();
+  const double mesh_seconds = clock.wall();
+  reference_params params;
+  params.form_factors = setting.solver.form_factors;
+  reference_solution solution;
+  if (!solve_reference(s, mesh, params, solution, result.error)) return result;
+  result.setup_seconds = mesh_seconds + solution.seconds_matrix;
+
+  std::unique_ptr<picture_judge> pictures;
+  std::unique_ptr<vertex_judge> vertices;
+  if (setting.measure_error) {
+    if (truth.exact == exact_kind::none)
+      pictures = std::make_unique<picture_judge>(s, truth);
+    else
+      vertices = std::make_unique<vertex_judge>(s, truth.exact);
+  }
+  auto point = [&](const std::vector<rgb>& radiosity, double solve_seconds, double residual) {
+    bench_point p;
+    p.seconds = result.setup_seconds + solve_seconds;
+    p.cpu_seconds = not_measured;  // one process runs both; the run's CPU total is reported
+    p.rays = solution.rays;
+    p.residual = residual;
+    if (vertices) vertices->judge(mesh, radiosity, p);
+    if (pictures) {
+      const auto v = pictures->judge_solution(mesh, radiosity, {}, diffuse_source::radiosity);
+      p.error = v.error;
+      p.max_error = v.max_error;
+    }
+    return p;
+  };
+  result.curves.push_back({"reference-lu", {point(solution.radiosity, solution.seconds_lu, solution.residual)}});
+  result.curves.push_back(
+      {"gauss-seidel",
+       {point(solution.radiosity_gauss_seidel, solution.seconds_gauss_seidel, solution.residual_gauss_seidel)}});
+  return result;
+}
+
+bench_result run_path(const scene& s, const bench_setting& setting, const bench_truth& truth) {
+  bench_result result;
+  if (truth.exact != exact_kind::none) {
+    result.error = "the path tracer is measured on pictures; this scene is measured per vertex";
+    return result;
+  }
+  run_clock clock;
+  picture_judge pictures(s, truth);
+  result.setup_seconds = clock.wall();  // the ray-tracing BVH
+  const double setup_cpu = clock.cpu();
+  result.curves.push_back({"path", {}});
+  double spent = 0.0;
+  for (int spp = 1; spp <= setting.path_max_spp && spent < setting.solver.stop.seconds; spp *= 2) {
+    trace_params params;
+    params.method = integrator::path;
+    params.spp = spp;
+    params.seed = 2;  // the reference is traced with seed 1: independent noise
+    trace_stats stats;
+    const double c0 = cpu_seconds();
+    const image picture = trace_image(s, pictures.rays(), nullptr, params, nullptr, &stats);
+    bench_point p;
+    p.cpu_seconds = setup_cpu + cpu_seconds() - c0;  // each picture is its own run: set-up plus its trace
+    p.seconds = result.setup_seconds + stats.seconds;
+    p.rays = stats.primary_rays + stats.shadow_rays + stats.secondary_rays;
+    const auto v = pictures.judge(picture);
+    p.error = v.error;
+    p.max_error = v.max_error;
+    result.curves[0].points.push_back(p);
+    spent += stats.seconds;
+  }
+  return result;
+}
+
+}  // namespace
+
+bench_result run_bench(const scene& s, const bench_setting& setting, const bench_truth& truth) {
+  switch (setting.kind) {
+    case bench_solver::progressive:
+      return run_progressive(s, setting, truth);
+    case bench_solver::reference:
+      return run_reference(s, setting, truth);
+    case bench_solver::path_tracer:
+      return run_path(s, setting, truth);
+  }
+  return {};
+}
+
+}  // namespace bounce

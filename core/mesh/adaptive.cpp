@@ -1,0 +1,311 @@
+#include "mesh/adaptive.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include "radiosity/radiosity.h"
+#include "scene/scene_info.h"
+
+namespace bounce {
+namespace {
+
+double longest_edge(const patch_mesh& mesh, std::size_t e) {
+  const glm::ivec3 t = mesh.elements[e];
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, glm::length(mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]));
+  return longest;
+}
+
+vec3 centroid(const patch_mesh& mesh, std::size_t e) {
+  const glm::ivec3 t = mesh.elements[e];
+  return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+}
+
+std::uint64_t edge_key(int a, int b) {
+  return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+}
+
+// How many elements use each edge: 1 on a surface's boundary (vertices are
+// split between surfaces, so surfaces never share an edge).
+std::unordered_map<std::uint64_t, int> edge_uses(const patch_mesh& mesh) {
+  std::unordered_map<std::uint64_t, int> uses;
+  uses.reserve(mesh.element_count() * 2);
+  for (const glm::ivec3& t : mesh.elements)
+    for (int k = 0; k < 3; ++k) ++uses[edge_key(t[k], t[(k + 1) % 3])];
+  return uses;
+}
+
+// Elements bucketed by the cells of a uniform grid their bounding boxes
+// (grown by `margin`) overlap: candidates for point queries.
+struct element_grid {
+  double cell;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells;
+
+  static std::uint64_t key(long long x, long long y, long long z) {
+    return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
+  }
+  long long index(double c) const { return std::llround(std::floor(c / cell)); }
+
+  element_grid(const patch_mesh& mesh, double cell_size, double margin) : cell(cell_size) {
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+      vec3 lo(1e300), hi(-1e300);
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, mesh.positions[mesh.elements[e][k]]);
+        hi = glm::max(hi, mesh.positions[mesh.elements[e][k]]);
+      }
+      lo -= vec3(margin);
+      hi += vec3(margin);
+      for (long long x = index(lo.x); x <= index(hi.x); ++x)
+        for (long long y = index(lo.y); y <= index(hi.y); ++y)
+          for (long long z = index(lo.z); z <= index(hi.z); ++z) cells[key(x, y, z)].push_back(int(e));
+    }
+  }
+
+  const std::vector<int>* at(const vec3& p) const {
+    auto it = cells.find(key(index(p.x), index(p.y), index(p.z)));
+    return it == cells.end() ? nullptr : &it->second;
+  }
+};
+
+bool emits(const patch_mesh& mesh, std::size_t e) {
+  return channel_sum(mesh.vertex_emission[mesh.elements[e][0]]) > 0.0;
+}
+
+// Area-weighted mean exitance of the emitted power over the whole mesh: the
+// scale of "dark" for the absolute floor.
+double mean_exitance(const radiosity_state& state) {
+  const double area = total_area(*state.mesh);
+  return area > 0.0 ? channel_sum(state.balance.emitted) / area : 0.0;
+}
+
+std::vector<int> sorted_unique(std::vector<int> marks) {
+  std::sort(marks.begin(), marks.end());
+  marks.erase(std::unique(marks.begin(), marks.end()), marks.end());
+  return marks;
+}
+
+}  // namespace
+
+double adaptive_start_edge(const scene& s) {
+  return 1.5 * default_max_edge(s);
+}
+
+double resolved_min_edge(const adaptive_params& params, const patch_mesh& mesh) {
+  return params.min_edge > 0.0 ? params.min_edge : default_min_edge(mesh.max_edge);
+}
+
+std::vector<int> contact_marks(const patch_mesh& mesh, double min_edge) {
+  // A surface's boundary edge lying on the inside of another surface's
+  // element (not on that surface's own boundary: walls meeting at a corner
+  // are not a contact) marks both elements. Points are sampled along the
+  // boundary edge at half the minimum edge.
+  const auto uses = edge_uses(mesh);
+  std::vector<bool> on_surface_boundary(mesh.vertex_count(), false);
+  for (const glm::ivec3& t : mesh.elements)
+    for (int k = 0; k < 3; ++k)
+      if (uses.at(edge_key(t[k], t[(k + 1) % 3])) == 1)
+        on_surface_boundary[t[k]] = on_surface_boundary[t[(k + 1) % 3]] = true;
+  const double tolerance = 1e-6 * mesh.scene_diagonal;
+  const element_grid grid(mesh, std::max(mesh.max_edge, mesh.scene_diagonal / 64.0), tolerance);
+  std::vector<int> marks;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (uses.at(edge_key(a, b)) != 1) continue;
+      const vec3 pa = mesh.positions[a], pb = mesh.positions[b];
+      // (capped: a boundary edge is never longer than the starting edge, and
+      // the mesher refuses a minimum edge below max_edge / 256)
+      const int samples = int(std::clamp(std::ceil(glm::length(pb - pa) / (0.5 * min_edge)) + 1.0, 2.0, 1024.0));
+      bool touched = false;
+      for (int i = 0; i < samples; ++i) {
+        const vec3 q = pa + (pb - pa) * (double(i) / (samples - 1));
+        const std::vector<int>* candidates = grid.at(q);
+        if (!candidates) continue;
+        for (int other : *candidates) {
+          const glm::ivec3 o = mesh.elements[other];
+          if (o[0] == a || o[1] == a || o[2] == a || o[0] == b || o[1] == b || o[2] == b) continue;
+          if (std::abs(glm::dot(mesh.element_normals[other], q - mesh.positions[o[0]])) > tolerance) continue;
+          const vec3 w = barycentric(mesh, other, q);
+          if (std::min({w[0], w[1], w[2]}) < -1e-9) continue;
+          // On the other surface's boundary (w[j] ~ 0 is the edge opposite j)?
+          // (or at one of its boundary vertices)?
+          bool on_boundary = false;
+          for (int j = 0; j < 3; ++j) {
+            if (std::abs(w[j]) < 1e-6 && uses.at(edge_key(o[(j + 1) % 3], o[(j + 2) % 3])) == 1) on_boundary = true;
+            if (std::abs(w[j] - 1.0) < 1e-6 && on_surface_boundary[o[j]]) on_boundary = true;
+          }
+          if (on_boundary) continue;
+          if (longest_edge(mesh, other) > min_edge) marks.push_back(other);
+          touched = true;
+        }
+      }
+      if (touched && longest_edge(mesh, e) > min_edge) marks.push_back(int(e));
+    }
+  }
+  return sorted_unique(std::move(marks));
+}
+
+std::vector<int> emitter_marks(const patch_mesh& mesh, double min_edge) {
+  // The form factor to an emitter varies as 1/r^2: an element in front of
+  // an emitter (and facing it) should be no larger than its distance to it.
+  // Emitters are taken by patch (their outlines), far fewer than elements.
+  struct emitter {
+    vec3 center, normal;
+    double radius;
+  };
+  std::vector<emitter> emitters;
+  std::vector<bool> patch_emits(mesh.patch_count(), false);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    if (emits(mesh, e)) patch_emits[mesh.element_patches[e]] = true;
+  for (std::size_t p = 0; p < mesh.patch_count(); ++p) {
+    if (!patch_emits[p]) continue;
+    const auto& c = mesh.patch_corners[p];
+    const vec3 center = (c[0] + c[1] + c[2]) / 3.0;
+    double radius = 0.0;
+    for (const vec3& corner : c) radius = std::max(radius, glm::length(corner - center));
+    emitters.push_back({center, mesh.patch_normals[p], radius});
+  }
+  std::vector<int> marks;
+  if (emitters.empty()) return marks;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    if (emits(mesh, e)) continue;
+    const double size = longest_edge(mesh, e);
+    if (size <= min_edge) continue;
+    const vec3 c = centroid(mesh, e);
+    for (const emitter& em : emitters) {
+      const vec3 d = c - em.center;
+      if (glm::dot(em.normal, d) <= 0.0 || glm::dot(mesh.element_normals[e], d) >= 0.0) continue;
+      if (size > glm::length(d) - em.radius) {
+        marks.push_back(int(e));
+        break;
+      }
+    }
+  }
+  return marks;
+}
+
+bool refine_a_priori(patch_mesh& mesh, double min_edge, refinement_pass& report, std::string& error) {
+  report.elements_before = mesh.element_count();
+  const std::size_t vertices_before = mesh.vertex_count();
+  std::vector<int> origin;
+  for (;;) {
+    std::vector<int> contact = contact_marks(mesh, min_edge);
+    std::vector<int> emitter = emitter_marks(mesh, min_edge);
+    report.contact += contact.size();
+    report.emitter += emitter.size();
+    contact.insert(contact.end(), emitter.begin(), emitter.end());
+    contact = sorted_unique(std::move(contact));
+    if (contact.empty()) break;
+    if (!refine_patch_mesh(mesh, contact, min_edge, origin, error)) return false;
+  }
+  report.elements_after = mesh.element_count();
+  report.new_vertices = mesh.vertex_count() - vertices_before;
+  return true;
+}
+
+std::vector<int> gradient_marks(const radiosity_state& state, const adaptive_params& params) {
+  const patch_mesh& mesh = *state.mesh;
+  const double min_edge = resolved_min_edge(params, mesh);
+  const double floor = params.floor * mean_exitance(state);
+  std::vector<int> marks;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    double lo = 1e300, hi = -1e300, mean = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double b = channel_sum(state.radiosity[t[k]]);
+      lo = std::min(lo, b);
+      hi = std::max(hi, b);
+      mean += b / 3.0;
+    }
+    if (hi - lo > params.tolerance * std::max(mean, floor) && longest_edge(mesh, e) > min_edge) marks.push_back(int(e));
+  }
+  return marks;
+}
+
+std::vector<int> shadow_marks(radiosity_state& state, const adaptive_params& params) {
+  const patch_mesh& mesh = *state.mesh;
+  const double min_edge = resolved_min_edge(params, mesh);
+  const double floor = params.floor * mean_exitance(state);
+  // The strong shooters: at least params.shadow_shooters of the strongest
+  // one's shot power (an emitter meshed into many elements has many equal
+  // shooters), the strongest max_shadow_shooters of them.
+  std::vector<std::pair<double, const shot_record*>> strong;
+  for (const shot_record& record : state.shot_log)
+    strong.emplace_back(channel_sum(record.radiosity) * record.from.area, &record);
+  std::sort(strong.begin(), strong.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (strong.size() > std::size_t(params.max_shadow_shooters)) strong.resize(std::size_t(params.max_shadow_shooters));
+  std::vector<double> f(mesh.vertex_count());
+  std::vector<std::uint8_t> seen(mesh.vertex_count());
+  std::vector<int> marks;
+  for (const auto& [power, entry] : strong) {
+    if (!(power >= params.shadow_shooters * strong.front().first)) break;
+    const shot_record& record = *entry;
+    state.stats.rays += form_factors_by_rays(state.form_factors, record.from, {}, f, seen);
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+      const glm::ivec3 t = mesh.elements[e];
+      bool any_hidden = false, any_whole = false, any_partly = false;
+      double strongest = 0.0, mean = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const int v = t[k];
+        any_hidden |= seen[v] == hidden;
+        any_whole |= seen[v] == seen_whole;
+        any_partly |= seen[v] == seen_partly;
+        strongest = std::max(strongest, channel_sum(mesh.vertex_rho[v] * (f[v] * record.radiosity)));
+        mean += channel_sum(state.radiosity[v]) / 3.0;
+      }
+      // A shadow edge crosses the element, and the light it cuts matters.
+      // (A vertex that sees the shooter partly lies in its penumbra.)
+      const bool boundary = any_partly || (any_hidden && any_whole);
+      if (boundary && strongest > params.tolerance * std::max(mean, floor) && longest_edge(mesh, e) > min_edge)
+        marks.push_back(int(e));
+    }
+  }
+  return sorted_unique(std::move(marks));
+}
+
+bool refinement_due(const radiosity_state& state) {
+  const adaptive_progress& progress = state.adaptive;
+  if (!state.params.adaptive.enabled || progress.finished || !state.lights_shot) return false;
+  if (progress.passes >= state.params.adaptive.max_passes) return false;
+  // Every emitter must have shot: before that, the light is half there.
+  for (const rgb& u : state.unshot_emission)
+    if (channel_sum(u) > 0.0) return false;
+  return state.stats.unshot_fraction <= progress.next_fraction;
+}
+
+bool refine_pass(radiosity_state& state) {
+  const auto start = std::chrono::steady_clock::now();
+  const adaptive_params& params = state.params.adaptive;
+  adaptive_progress& progress = state.adaptive;
+  refinement_pass pass;
+  pass.unshot_fraction = state.stats.unshot_fraction;
+  pass.elements_before = state.mesh->element_count();
+  std::vector<int> marks = gradient_marks(state, params);
+  pass.gradient = marks.size();
+  std::vector<int> shadow = shadow_marks(state, params);
+  pass.shadow = shadow.size();
+  marks.insert(marks.end(), shadow.begin(), shadow.end());
+  marks = sorted_unique(std::move(marks));
+  ++progress.passes;
+  bool changed = false;
+  if (marks.empty()) {
+    progress.finished = true;
+  } else if (!refine_radiosity(state, marks, resolved_min_edge(params, *state.mesh), progress.error,
+                               &pass.new_vertices)) {
+    progress.finished = true;  // the mesh limit: keep solving on the mesh we have
+  } else {
+    changed = true;
+  }
+  pass.elements_after = state.mesh->element_count();
+  progress.next_fraction = state.stats.unshot_fraction / params.refine_every;
+  pass.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.history.push_back(pass);
+  return changed;
+}
+
+}  // namespace bounce

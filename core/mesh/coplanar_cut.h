@@ -1,0 +1,60 @@
+// Coplanar overlaps: a surface lying in (or within a hair of) the plane of
+// another surface that faces the same way, such as a light set into a
+// ceiling or 0.1 mm under it, as most Cornell box files have it. Both the
+// radiosity mesh and the ray scene would hold two coincident surfaces
+// there: the Gouraud view z-fights, the covered part of the surface behind
+// receives light it could never get, and ray hits flip between the two.
+// The covered part is cut out of the surface behind, as the embedded
+// Cornell box does by hand.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "scene/scene.h"
+#include "scene/tessellate.h"
+
+namespace bounce {
+
+// Two planes facing the same way are one plane when their offsets differ by
+// at most this fraction of the scene's bounding-box diagonal (0.48 mm in the
+// 550 mm Cornell box, whose diagonal is 965 mm) and their normals by at
+// most coplanar_max_angle radians.
+inline constexpr double coplanar_relative_tolerance = 5e-4;
+inline constexpr double coplanar_max_angle = 1e-3;
+
+struct coplanar_cut_stats {
+  std::size_t surfaces_cut = 0;  // (surface, material) pieces that lost area
+  double area_removed = 0.0;     // scene units squared
+};
+
+// Cuts coplanar overlaps out of the triangles of flat surfaces, in place.
+// tessellated[i] holds surface i's triangles; only surfaces with flat[i]
+// (polygon meshes) take part, curved ones are left alone. Triangles are
+// grouped into planes (normal within coplanar_max_angle, offset within the
+// tolerance); within a plane, a (surface, material) piece is covered by the
+// pieces ranked above it: emitters first (an emitter keeps all its area),
+// then the piece in front (the larger offset along the common normal), then
+// the later surface. Each covered piece's triangles in that plane are
+// replaced by a triangulation of their union minus the cover (Clipper's
+// polygon difference, then ear clipping with holes bridged): vertices on
+// the region's boundary are kept exactly, so the piece still meets its
+// other faces without T-vertices; new vertices (where the cover's outline
+// crosses) interpolate position, normal and uv from the triangle they lie
+// in. Pieces the cover only touches are left as they are.
+coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
+                                         const std::vector<material>& materials, double scene_diagonal);
+
+// Triangulates a simple polygon with holes, given as integer points (exact
+// orientation tests): `outer` counter-clockwise, each hole clockwise, none
+// touching another. Returns corner triples, counter-clockwise, indexing the
+// concatenation of outer and the holes in order. Exposed for tests.
+struct int_point {
+  long long x = 0, y = 0;
+  bool operator==(const int_point&) const = default;
+};
+std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_point>& outer,
+                                                       const std::vector<std::vector<int_point>>& holes);
+
+}  // namespace bounce

@@ -1,0 +1,159 @@
+// Progressive shooting radiosity (Cohen, Chen, Wallace & Greenberg 1988)
+// received at vertices, shot from elements or from patches of elements
+// (substructuring, Cohen 1986).
+//
+// Discretisation (vertex collocation, shared with the reference solver):
+//   B_v = E_v + rho_v * sum_e F(v, e) * B_e,   B_e = mean of e's vertices,
+// the mean of a linear function over a triangle. Each element keeps unshot
+// radiosity U_e; a step shoots the element with the most unshot power
+// U_e * A_e to every vertex (dB_v = rho_v F(v, e) U_e), adds what each
+// vertex received to the unshot radiosity of its elements (a third each),
+// and zeroes U_e. Invariant: U = M B - S, with M the vertex-to-element mean
+// and S what each element has shot so far; at U = 0, B solves the system.
+// A patch shoots its elements' area-weighted mean unshot radiosity through
+// its outline: the same power, with the shooter's radiosity averaged over
+// the patch. With one element per patch (the default) the solver converges
+// to the reference solver's solution.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mesh/adaptive.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/form_factor.h"
+#include "radiosity/solver_settings.h"
+
+namespace bounce {
+
+struct radiosity_params {
+  form_factor_params form_factors;
+  adaptive_params adaptive;  // a posteriori refinement during shooting (off by default)
+};
+
+// Power bookkeeping, per channel, in the scene's power units (radiosity x
+// area). At every step: emitted + received == shot + unshot, to round-off.
+struct power_balance {
+  rgb emitted{0.0};   // emission of the elements, plus point light arriving at vertices
+  rgb received{0.0};  // reflected power added to elements' unshot by shots
+  rgb shot{0.0};
+  rgb unshot{0.0};
+  // Adaptive refinement: what the new vertices gathered from the shots
+  // already made, less what the coarse elements had assumed there (signed;
+  // a shadow found inside an element makes it negative).
+  rgb refined{0.0};
+};
+
+// |emitted + received + refined - shot - unshot| / (emitted + received),
+// over all channels: 0 to round-off at every step (0 before any power).
+double balance_error(const power_balance& b);
+
+// A shooter that has shot, with all the radiosity it has shot so far: what
+// a vertex added later gathers from, F(v, shooter) x radiosity, so that
+// every shot made is accounted for exactly.
+struct shot_record {
+  shooter from;
+  rgb radiosity{0.0};
+  rgb emission{0.0};  // the part of it that was the shooter's own emission
+};
+
+struct radiosity_stats {
+  std::uint64_t shots = 0;
+  std::uint64_t refinements = 0;  // adaptive passes that changed the mesh
+  std::uint64_t rays = 0;
+  double seconds = 0.0;          // wall time spent in steps
+  double unshot_fraction = 1.0;  // unshot power / emitted power (sum of channels)
+};
+
+struct radiosity_state {
+  const patch_mesh* mesh = nullptr;
+  std::shared_ptr<const patch_mesh> refined_mesh;  // set by refine_radiosity: the mesh now in use
+  const scene* source = nullptr;
+  radiosity_params params;
+  form_factor_context form_factors;
+
+  std::vector<rgb> radiosity;        // B per vertex
+  std::vector<rgb> direct;           // the part of B received straight from emitters and point lights
+  std::vector<rgb> unshot;           // U per element
+  std::vector<rgb> unshot_emission;  // the part of U that is the element's own emission, not yet shot
+  power_balance balance;
+  radiosity_stats stats;
+  bool lights_shot = false;
+  std::vector<double> scratch;      // form factors of the current shot
+  std::vector<rgb> received;        // what each vertex received in the current shot
+  std::vector<double> patch_power;  // unshot power per patch, for choosing the shooter
+  std::vector<std::vector<int>> patch_elements;
+  std::vector<shot_record> shot_log;  // every shooter that has shot (a patch split later keeps its record)
+  std::vector<int> patch_log;         // per patch: its entry in shot_log, -1 before its first shot
+  adaptive_progress adaptive;
+};
+
+// Sets B = E, U = M E, and prepares the form-factor method.
+std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
+                                                      const radiosity_params& params);
+
+// Back to B = E, U = M E, keeping the form-factor method (and its BVH) and
+// the mesh (refined, if it was); the refinement schedule starts again.
+void restart_radiosity(radiosity_state& state);
+
+// One step: point lights first (all of them, with shadow rays), then one
+// patch shot, or, with adaptive refinement on and due, a refinement pass
+// (state.mesh then changes). Returns false when nothing is left to do.
+bool step_radiosity(radiosity_state& state);
+
+// Refines the state's mesh (refine_patch_mesh: the marked elements, no
+// edge below min_edge) and carries the solution over exactly: each new
+// vertex gathers F(v, s) x radiosity from every shooter s in the shot log
+// (and the point lights again), old vertices keep theirs, and each element's
+// unshot becomes its origin's plus the change in its vertices' mean, so
+// U = M B - S still holds. The refined mesh is state.refined_mesh (the old
+// one may then be released). Returns false with `error` if the mesh would
+// grow too large; the state is then unchanged. `new_vertices` (may be
+// null) receives how many vertices were added.
+bool refine_radiosity(radiosity_state& state, std::span<const int> marked, double min_edge, std::string& error,
+                      std::size_t* new_vertices = nullptr);
+
+// Steps until `stop` holds (counted from the solver's start, not from this
+// call: solver_settings.h) or nothing is left. `on_step` (may be
+// empty) runs after every step, e.g. to publish a snapshot.
+template <typename callback>
+void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step);
+
+// Ambient term of Cohen 1988 for display only: the unshot power spread
+// evenly, reflected with the mean reflectance. Never stored in B.
+rgb ambient_radiosity(const radiosity_state& state);
+
+// Area-weighted mean irradiance that did not come straight from an emitter
+// (what arrives after one or more reflections): the constant ambient term
+// of a one-pass Whitted still, taken from a (coarse) solution.
+rgb mean_indirect_irradiance(const radiosity_state& state);
+
+// An immutable copy of the solution, for the view and the stills. Its
+// arrays belong to the state's mesh at the time (state.mesh: refined, with
+// adaptive meshing); whoever shows it keeps that mesh with it.
+struct radiosity_snapshot {
+  std::uint64_t version = 0;       // shots and refinements so far; increases with every step
+  std::vector<rgb> radiosity;      // per vertex
+  std::vector<rgb> direct;         // per vertex: the part of radiosity straight from the lights
+  std::vector<rgb> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
+  rgb ambient{0.0};
+  radiosity_stats stats;
+};
+std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state);
+
+// Sum over channels, the scalar used to pick shooters and report fractions.
+inline double channel_sum(const rgb& c) {
+  return c.r + c.g + c.b;
+}
+
+// ---- template implementation ----
+
+template <typename callback>
+void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step) {
+  while (!stop_reached(state, stop) && step_radiosity(state)) on_step(state);
+}
+
+}  // namespace bounce

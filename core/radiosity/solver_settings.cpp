@@ -1,0 +1,65 @@
+#include "radiosity/solver_settings.h"
+
+#include "radiosity/radiosity.h"
+#include "scene/scene_info.h"
+
+namespace bounce {
+
+bool stop_reached(const radiosity_state& state, const stop_criterion& stop) {
+  const radiosity_stats& st = state.stats;
+  // Before every emitter has shot, the unshot fraction says little: a dim
+  // emitter may not have shot yet.
+  if (stop.unshot_fraction > 0.0 && state.lights_shot && st.unshot_fraction <= stop.unshot_fraction) return true;
+  if (stop.max_shots > 0 && st.shots >= stop.max_shots) return true;
+  return stop.seconds > 0.0 && st.seconds >= stop.seconds;
+}
+
+mesher_params mesher_params_for(const solver_settings& settings, const scene& s) {
+  mesher_params p;
+  if (settings.adaptive.enabled) {
+    // Adaptive meshing starts coarser and lets elements shoot, so that the
+    // shooters refine with the receivers (docs/radiosity.md).
+    p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : adaptive_start_edge(s);
+    p.patch_edge = settings.patch_edge < 0.0 ? 0.0 : settings.patch_edge;
+    p.a_priori_min_edge = settings.adaptive.min_edge > 0.0 ? settings.adaptive.min_edge : default_min_edge(p.max_edge);
+    return p;
+  }
+  p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : default_max_edge(s);
+  // Patches of about 16 elements shoot by default: on the Cornell box much
+  // faster to converge than element shooting, for a small deviation
+  // (docs/radiosity.md).
+  p.patch_edge = settings.patch_edge < 0.0 ? 4.0 * p.max_edge : settings.patch_edge;
+  return p;
+}
+
+radiosity_params radiosity_params_for(const solver_settings& settings) {
+  radiosity_params p;
+  p.form_factors = settings.form_factors;
+  p.adaptive = settings.adaptive;
+  return p;
+}
+
+namespace {
+constexpr form_factor_method_name method_names[] = {
+    {form_factor_method::raycast, "raycast"},
+    {form_factor_method::hemicube, "hemicube"},
+};
+}  // namespace
+
+std::span<const form_factor_method_name> form_factor_method_names() {
+  return method_names;
+}
+
+std::string_view name_of(form_factor_method method) {
+  for (const auto& m : method_names)
+    if (m.method == method) return m.name;
+  return "unknown";
+}
+
+std::optional<form_factor_method> form_factor_method_named(std::string_view name) {
+  for (const auto& m : method_names)
+    if (m.name == name) return m.method;
+  return std::nullopt;
+}
+
+}  // namespace bounce

@@ -1,0 +1,61 @@
+// One settings type for a radiosity run: how the scene is meshed, how form
+// factors are computed, whether the mesh adapts, and when to stop. The
+// command line, the panel, the viewer's worker and the bench all hold one
+// of these and turn it into the core's parameters the same way.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "mesh/adaptive.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/form_factor.h"
+
+namespace bounce {
+
+struct radiosity_state;
+struct radiosity_params;
+
+// When a run stops. Every limit counts from the solver's (re)start: the
+// shots it has made and the time it has spent shooting (radiosity_stats),
+// so a limit means the same whether the run is driven by `run_radiosity`,
+// the window's worker or the bench.
+struct stop_criterion {
+  double unshot_fraction = 0.01;  // stop at or below this, once every emitter has shot (0: no limit)
+  std::uint64_t max_shots = 0;    // 0: no limit
+  double seconds = 0.0;           // solver time; 0: no limit
+};
+
+// True when `state` meets `stop`.
+bool stop_reached(const radiosity_state& state, const stop_criterion& stop);
+
+struct solver_settings {
+  // Mesh, in scene units, as asked for; mesher_params_for resolves the
+  // defaults that depend on the scene.
+  double max_edge = 0.0;     // longest element edge; 0: the scene's default
+  double patch_edge = -1.0;  // shooting patches (substructuring); 0: elements shoot; < 0: the default
+  form_factor_params form_factors;
+  adaptive_params adaptive;  // adaptive.min_edge 0: the default for the element size
+  stop_criterion stop;
+};
+
+// The mesher's parameters for `s`: element size from the scene when not
+// given; patches of 4 x 4 elements shoot (or, with adaptive meshing, the
+// elements themselves, which refine with the receivers).
+mesher_params mesher_params_for(const solver_settings& settings, const scene& s);
+
+// The solver's parameters (form factors and a posteriori refinement).
+radiosity_params radiosity_params_for(const solver_settings& settings);
+
+// Names of the form-factor methods, as the command line and the panel show them.
+struct form_factor_method_name {
+  form_factor_method method;
+  std::string_view name;
+};
+std::span<const form_factor_method_name> form_factor_method_names();
+std::string_view name_of(form_factor_method method);
+std::optional<form_factor_method> form_factor_method_named(std::string_view name);
+
+}  // namespace bounce

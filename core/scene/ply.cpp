@@ -1,0 +1,50 @@
+#include "scene/ply.h"
+
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+
+#include "image/tonemap.h"
+
+namespace bounce {
+
+bool write_ply(const std::string& path, const patch_mesh& mesh, const std::vector<rgb>& radiosity, std::string& error) {
+  std::ofstream out(path);
+  if (!out) {
+    error = path + ": cannot open for writing";
+    return false;
+  }
+  // Exposure from the reflecting vertices: emitters would wash everything out.
+  std::vector<rgb> reflected;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (mesh.vertex_emission[v] == rgb(0.0)) reflected.push_back(radiosity[v] / std::numbers::pi);
+  const double exposure = auto_exposure(reflected);
+
+  out << "ply\nformat ascii 1.0\ncomment Bounce radiosity: radiosity_* is B in W/m^2 per scene unit^2, unscaled\n"
+      << "comment red/green/blue: radiance B/pi x exposure " << exposure << ", sRGB\n"
+      << "element vertex " << mesh.vertex_count() << "\n"
+      << "property float x\nproperty float y\nproperty float z\n"
+      << "property float nx\nproperty float ny\nproperty float nz\n"
+      << "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
+      << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+      << "element face " << mesh.element_count() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  char line[512];
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const vec3& p = mesh.positions[v];
+    const vec3& n = mesh.normals[v];
+    const rgb& b = radiosity[v];
+    const glm::u8vec3 c = to_srgb8(b / std::numbers::pi, exposure);
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.6g %.6g %.6g %.9g %.9g %.9g %d %d %d\n", p.x, p.y, p.z, n.x, n.y,
+                  n.z, b.r, b.g, b.b, c.r, c.g, c.b);
+    out << line;
+  }
+  for (const glm::ivec3& t : mesh.elements) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  out.flush();
+  if (!out) {
+    error = path + ": write failed";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace bounce

@@ -1,0 +1,44 @@
+// Loading and validating scenes: JSON scene files, bare Wavefront OBJ/MTL,
+// and the Cornell box embedded in the binary.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace bounce {
+
+// Name of the embedded default scene (the Cornell box, same bytes as
+// assets/cornell_box/). Paths starting with "embedded:" are read from the
+// binary, so relative references inside it resolve there too.
+inline constexpr const char* default_scene_path = "embedded:cornell_box/cornell_box.json";
+
+struct load_report {
+  std::string error;                  // set when loading failed: "file:line: what"
+  std::vector<std::string> warnings;  // things dropped or ignored, one line each
+  std::size_t dropped_faces = 0;      // degenerate faces removed
+};
+
+// Loads a .json scene or a bare .obj (its camera fitted to the geometry) and
+// validates it. On failure returns false, fills report.error with a message
+// naming the file and the line or object, and leaves `out` untouched.
+bool load_scene(const std::string& path, scene& out, load_report& report);
+
+// Reads a file's bytes, from disk or from the embedded files.
+std::optional<std::string> read_file(const std::string& path);
+
+// A camera that frames the scene's bounding box, looking horizontally from
+// the side that shows the most front-facing area (y is up).
+camera fit_camera(const scene& s);
+
+// Axis-aligned bounds of every surface (curved ones by their control
+// points or boxes).
+struct bounds3 {
+  vec3 min{0.0};
+  vec3 max{0.0};
+};
+bounds3 scene_bounds(const scene& s);
+
+}  // namespace bounce

@@ -1,0 +1,20 @@
+// The rules every scene obeys, whether loaded from a file or built in
+// code: what the solvers, the tracer and the view may take for granted.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace bounce {
+
+// Checks a scene built in code or loaded: finite numbers, rho in [0,1),
+// non-negative emission, sane camera and sizes. Returns an empty string
+// when valid, else the first problem.
+std::string validate_scene(const scene& s);
+
+// True when some surface emits (ke > 0) or a point light shines. A scene
+// without is valid (its picture is black) but worth a warning.
+bool has_light_source(const scene& s);
+
+}  // namespace bounce

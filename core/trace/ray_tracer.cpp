@@ -1,0 +1,385 @@
+#include "trace/ray_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <vector>
+
+#include "base/parallel.h"
+#include "image/image_metrics.h"
+#include "image/tonemap.h"
+#include "scene/camera_math.h"
+#include "scene/texture.h"
+#include "trace/optics.h"
+
+namespace bounce {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// splitmix64: small, fast, and seedable per pixel, so a picture depends on
+// the seed alone and not on how threads share the tiles.
+struct random_stream {
+  std::uint64_t state;
+  explicit random_stream(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0)
+      : state(seed * 0x9E3779B97F4A7C15ull ^ (a + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull ^
+              (b + 1) * 0x94D049BB133111EBull) {
+    next_bits();
+  }
+  std::uint64_t next_bits() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return double(next_bits() >> 11) * 0x1p-53; }  // [0, 1)
+};
+
+// n stratified points in [0,1)^2 (Latin hypercube: each row and each
+// column of an n x n grid holds one point), for any n.
+void stratified_points(int n, random_stream& rng, std::vector<vec2>& out) {
+  out.resize(n);
+  for (int i = 0; i < n; ++i) out[i] = {(i + rng.uniform()) / n, (i + rng.uniform()) / n};
+  for (int i = n - 1; i > 0; --i) std::swap(out[i].y, out[std::size_t(rng.next_bits() % std::uint64_t(i + 1))].y);
+}
+
+// Weight of a sample drawn with density `chosen` when `other` could have
+// drawn it too (both per solid angle).
+double power_heuristic(double chosen, double other) {
+  return chosen * chosen / (chosen * chosen + other * other);
+}
+
+double max_channel(const rgb& c) {
+  return std::max({c.r, c.g, c.b});
+}
+
+double mean_channel(const rgb& c) {
+  return (c.r + c.g + c.b) / 3.0;
+}
+
+// Orthonormal basis around n (Duff et al. 2017).
+void basis(const vec3& n, vec3& t, vec3& b) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double c = n.x * n.y * a;
+  t = vec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  b = vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+vec3 cosine_direction(const vec3& n, double u1, double u2) {
+  vec3 t, b;
+  basis(n, t, b);
+  const double r = std::sqrt(u1), phi = 2.0 * pi * u2;
+  return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
+}
+
+struct counters {
+  std::uint64_t primary = 0, shadow = 0, secondary = 0;
+};
+
+// What a hit offers for shading, on the side the ray arrived from.
+struct surface_point {
+  const material* mat = nullptr;
+  ray_hit hit;
+  bool front = true;        // the ray arrived on the surface's own side
+  vec3 n{0.0};              // shading normal facing the ray
+  vec3 n_face{0.0};         // geometric normal facing the ray
+  rgb rho{0.0};             // diffuse reflectance with the texture, zero on back faces
+  rgb texture_detail{1.0};  // texture / its mean: what the radiosity pass averaged away
+  rgb kr{0.0}, kt{0.0};     // mirror and transmission weights after Fresnel and TIR
+  std::optional<vec3> refracted;
+};
+
+class tracer {
+ public:
+  tracer(const scene& s, const ray_scene& rays, const radiosity_field* field, const trace_params& p)
+      : s_(s), rays_(rays), field_(field), p_(p), offset_(rays.surface_offset()) {
+    for (const texture& tex : s.textures) texture_means_.push_back(texture_mean(tex));
+  }
+
+  rgb pixel(int x, int y, int samples, std::uint64_t pass, counters& c) const {
+    random_stream rng(p_.seed, std::uint64_t(y) * std::uint64_t(s_.view.width) + std::uint64_t(x), pass);
+    std::vector<vec2> offsets;
+    if (samples <= 1)
+      offsets.assign(1, vec2(0.5));
+    else
+      stratified_points(samples, rng, offsets);
+    rgb sum(0.0);
+    for (const vec2& o : offsets) {
+      const vec3 d = camera_ray_direction(s_.view, x + o.x, y + o.y);
+      ++c.primary;
+      sum +=
+          p_.method == integrator::path ? path(s_.view.eye, d, rng, c) : whitted(s_.view.eye, d, 0, rgb(1.0), rng, c);
+    }
+    return sum / double(offsets.size());
+  }
+
+ private:
+  surface_point describe(const ray_hit& hit, const vec3& d) const {
+    surface_point sp;
+    sp.hit = hit;
+    sp.mat = &s_.materials[hit.material];
+    sp.front = glm::dot(d, hit.face_normal) < 0.0;
+    sp.n_face = sp.front ? hit.face_normal : -hit.face_normal;
+    sp.n = sp.front ? hit.normal : -hit.normal;
+    if (sp.front) {
+      sp.rho = sp.mat->rho;
+      if (sp.mat->texture >= 0) {
+        const texture& t = s_.textures[sp.mat->texture];
+        const rgb value = texture_value(t, hit.uv), mean = texture_means_[sp.mat->texture];
+        sp.rho *= value;
+        for (int c = 0; c < 3; ++c) sp.texture_detail[c] = mean[c] > 0.0 ? value[c] / mean[c] : 0.0;
+      }
+    }
+    sp.kr = sp.mat->kr;
+    sp.kt = sp.mat->kt;
+    if (glm::any(glm::greaterThan(sp.kt, rgb(0.0)))) {
+      // Outside is air; the front side is where the normal points.
+      const double n1 = sp.front ? 1.0 : sp.mat->ior, n2 = sp.front ? sp.mat->ior : 1.0;
+      sp.refracted = refract(d, sp.n, n1, n2);
+      if (sp.mat->fresnel) {
+        const double f = fresnel_dielectric(std::min(1.0, -glm::dot(d, sp.n)), n1, n2);
+        sp.kr += f * sp.kt;
+        sp.kt *= 1.0 - f;
+      }
+      if (!sp.refracted) {  // total internal reflection: all of it reflects
+        sp.kr += sp.kt;
+        sp.kt = rgb(0.0);
+      }
+    }
+    return sp;
+  }
+
+  // Normalised Phong lobe, (n + 2) / (2 pi) cos^n of the angle between the
+  // light's mirror direction and the viewer.
+  rgb phong(const surface_point& sp, const vec3& to_light, const vec3& to_viewer) const {
+    if (sp.mat->shininess <= 0.0 || !glm::any(glm::greaterThan(sp.mat->specular, rgb(0.0)))) return rgb(0.0);
+    const double c = glm::dot(reflect(-to_light, sp.n), to_viewer);
+    if (c <= 0.0) return rgb(0.0);
+    return sp.mat->specular * (sp.mat->shininess + 2.0) / (2.0 * pi) * std::pow(c, sp.mat->shininess);
+  }
+
+  // Direct irradiance at a front-facing point from the point lights and
+  // `samples` stratified points on the area emitters, and the Phong
+  // highlight it makes.
+  //
+  // With `mis_lobe_probability` > 0 (the path tracer), each emitter sample
+  // is weighted by the power heuristic against the chance that cosine
+  // sampling of the diffuse lobe, picked with that probability, finds the
+  // same direction (Veach 1997): near contact edges the 1/d^2 of light
+  // sampling otherwise leaves fireflies.
+  void direct_light(const surface_point& sp, const vec3& to_viewer, int samples, random_stream& rng, counters& c,
+                    rgb& irradiance, rgb& highlight, double mis_lobe_probability = 0.0) const {
+    const vec3 origin = sp.hit.point + offset_ * sp.n_face;
+    for (const point_light& light : s_.lights) {
+      const vec3 to = light.position - sp.hit.point;
+      const double d2 = glm::dot(to, to);
+      const vec3 l = to / std::sqrt(d2);
+      const double cos_x = glm::dot(sp.n, l);
+      if (cos_x <= 0.0 || glm::dot(sp.n_face, l) <= 0.0) continue;
+      ++c.shadow;
+      if (rays_.occluded(origin, light.position)) continue;
+      const rgb e = light.intensity * cos_x / d2;
+      irradiance += e;
+      highlight += phong(sp, l, to_viewer) * e;
+    }
+    if (samples <= 0 || rays_.emitter_area() <= 0.0) return;
+    std::vector<vec2> points;
+    stratified_points(samples, rng, points);
+    for (const vec2& u : points) {
+      const emitter_sample es = rays_.sample_emitter(u.x, u.y);
+      const vec3 to = es.point - sp.hit.point;
+      const double d2 = glm::dot(to, to);
+      if (d2 <= 0.0) continue;
+      const vec3 l = to / std::sqrt(d2);
+      const double cos_x = glm::dot(sp.n, l), cos_e = -glm::dot(es.normal, l);
+      if (cos_x <= 0.0 || cos_e <= 0.0 || glm::dot(sp.n_face, l) <= 0.0) continue;
+      ++c.shadow;
+      if (rays_.occluded(origin, es.point + offset_ * es.normal)) continue;
+      double weight = 1.0;
+      if (mis_lobe_probability > 0.0)
+        weight = power_heuristic(es.pdf_area * d2 / cos_e, mis_lobe_probability * cos_x / pi);
+      const rgb e = es.radiance * (weight * cos_x * cos_e / d2 / es.pdf_area / samples);
+      irradiance += e;
+      highlight += phong(sp, l, to_viewer) * e;
+    }
+  }
+
+  rgb whitted(const vec3& origin, const vec3& d, int depth, const rgb& weight, random_stream& rng, counters& c) const {
+    const auto hit = rays_.intersect(origin, d);
+    if (!hit) return s_.background;
+    const surface_point sp = describe(*hit, d);
+    rgb radiance = sp.front ? sp.mat->ke : rgb(0.0);
+
+    if (sp.front) {
+      const bool diffuse = glm::any(glm::greaterThan(sp.rho, rgb(0.0)));
+      const bool shiny = sp.mat->shininess > 0.0 && glm::any(glm::greaterThan(sp.mat->specular, rgb(0.0)));
+      const bool solution = field_ && p_.diffuse != diffuse_source::ambient;
+      const bool traced_direct = !solution || p_.diffuse == diffuse_source::traced_direct;
+      if ((diffuse && traced_direct) || shiny) {
+        rgb irradiance(0.0), highlight(0.0);
+        direct_light(sp, -d, p_.light_samples, rng, c, irradiance, highlight);
+        if (traced_direct) radiance += sp.rho / pi * irradiance;
+        radiance += highlight;
+      }
+      if (diffuse) {
+        if (solution) {
+          const diffuse_radiosity b = field_->at(hit->surface, hit->point);
+          const rgb reflected = p_.diffuse == diffuse_source::radiosity ? b.reflected : b.indirect;
+          radiance += reflected * sp.texture_detail / pi;
+        } else {
+          radiance += sp.rho * p_.ambient_irradiance / pi;
+        }
+      }
+    }
+
+    if (depth + 1 >= p_.max_depth) return radiance;
+    if (max_channel(weight * sp.kr) > p_.min_weight) {
+      ++c.secondary;
+      radiance +=
+          sp.kr * whitted(hit->point + offset_ * sp.n_face, reflect(d, sp.n), depth + 1, weight * sp.kr, rng, c);
+    }
+    if (sp.refracted && max_channel(weight * sp.kt) > p_.min_weight) {
+      ++c.secondary;
+      radiance += sp.kt * whitted(hit->point - offset_ * sp.n_face, *sp.refracted, depth + 1, weight * sp.kt, rng, c);
+    }
+    return radiance;
+  }
+
+  // Unbiased path tracing: next-event estimation to the point lights and
+  // the area emitters at diffuse vertices (combined with the diffuse
+  // bounce by multiple importance sampling), one lobe chosen per bounce in
+  // proportion to its weight, Russian roulette after a few bounces.
+  rgb path(vec3 origin, vec3 d, random_stream& rng, counters& c) const {
+    rgb radiance(0.0), throughput(1.0);
+    double diffuse_pdf = 0.0;  // solid-angle density of the last bounce if it was diffuse; 0 after specular ones
+    for (int bounce = 0;; ++bounce) {
+      const auto hit = rays_.intersect(origin, d);
+      if (!hit) {
+        radiance += throughput * s_.background;
+        break;
+      }
+      const surface_point sp = describe(*hit, d);
+      if (sp.front && glm::any(glm::greaterThan(sp.mat->ke, rgb(0.0)))) {
+        // Emitters that next-event estimation samples share the diffuse
+        // bounce's share with it (MIS); the rest count in full.
+        double weight = 1.0;
+        if (diffuse_pdf > 0.0 && rays_.is_sampled_emitter(hit->surface)) {
+          const double cos_e = -glm::dot(d, hit->face_normal);
+          weight = power_heuristic(diffuse_pdf, hit->t * hit->t / (cos_e * rays_.emitter_area()));
+        }
+        radiance += throughput * sp.mat->ke * weight;
+      }
+      if (bounce + 1 >= p_.max_path) break;
+
+      const double p_diffuse = mean_channel(sp.rho), p_mirror = mean_channel(sp.kr),
+                   p_transmit = sp.refracted ? mean_channel(sp.kt) : 0.0;
+      const double total = p_diffuse + p_mirror + p_transmit;
+      if (total <= 0.0) break;
+      if (p_diffuse > 0.0) {
+        rgb irradiance(0.0), unused(0.0);
+        direct_light(sp, -d, 1, rng, c, irradiance, unused, p_diffuse / total);
+        radiance += throughput * sp.rho / pi * irradiance;
+      }
+      const double pick = rng.uniform() * total;
+      if (pick < p_diffuse) {
+        d = cosine_direction(sp.n, rng.uniform(), rng.uniform());
+        if (glm::dot(d, sp.n_face) <= 0.0) break;  // below the true surface (interpolated normals)
+        throughput *= sp.rho * (total / p_diffuse);
+        origin = hit->point + offset_ * sp.n_face;
+        diffuse_pdf = p_diffuse / total * glm::dot(d, sp.n) / pi;
+      } else if (pick < p_diffuse + p_mirror) {
+        d = reflect(d, sp.n);
+        throughput *= sp.kr * (total / p_mirror);
+        origin = hit->point + offset_ * sp.n_face;
+        diffuse_pdf = 0.0;
+      } else {
+        d = *sp.refracted;
+        throughput *= sp.kt * (total / p_transmit);
+        origin = hit->point - offset_ * sp.n_face;
+        diffuse_pdf = 0.0;
+      }
+      ++c.secondary;
+      if (bounce + 1 >= p_.roulette_depth) {
+        const double survive = std::min(0.95, max_channel(throughput));
+        if (survive <= 0.0 || rng.uniform() >= survive) break;
+        throughput /= survive;
+      }
+    }
+    return radiance;
+  }
+
+  const scene& s_;
+  const ray_scene& rays_;
+  const radiosity_field* field_;
+  trace_params p_;
+  double offset_;
+  std::vector<rgb> texture_means_;  // what the radiosity pass multiplied rho by
+};
+
+}  // namespace
+
+image trace_image(const scene& s, const ray_scene& rays, const radiosity_field* field, const trace_params& params,
+                  trace_progress* progress, trace_stats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  const tracer t(s, rays, field, params);
+  image img;
+  img.width = s.view.width;
+  img.height = s.view.height;
+  img.pixels.assign(std::size_t(img.width) * img.height * 3, 0.0f);
+  trace_progress local_progress;
+  trace_progress& prog = progress ? *progress : local_progress;
+  std::mutex stats_mutex;
+  counters total;
+
+  // One pass over a list of pixels (all of them, or those to refine), in
+  // rows of pixels handed out to TBB's threads.
+  auto trace_pixels = [&](std::size_t count, auto&& pixel_at, int samples, std::uint64_t pass) {
+    constexpr std::size_t chunk = 64;
+    for_each_block(params.parallel, (count + chunk - 1) / chunk, 1, [&](std::size_t begin, std::size_t end) {
+      counters c;
+      for (std::size_t block = begin; block < end && !prog.cancel.load(std::memory_order_relaxed); ++block) {
+        const std::size_t last = std::min(count, (block + 1) * chunk);
+        for (std::size_t k = block * chunk; k < last; ++k) {
+          const int i = pixel_at(k);
+          const rgb value = t.pixel(i % img.width, i / img.width, samples, pass, c);
+          for (int ch = 0; ch < 3; ++ch) img.pixels[3 * std::size_t(i) + ch] = float(value[ch]);
+        }
+        prog.pixels_done += long(last - block * chunk);
+      }
+      const std::lock_guard lock(stats_mutex);
+      total.primary += c.primary;
+      total.shadow += c.shadow;
+      total.secondary += c.secondary;
+    });
+  };
+
+  const std::size_t pixel_count = std::size_t(img.width) * img.height;
+  prog.pixels_total = long(pixel_count);
+  trace_pixels(
+      pixel_count, [](std::size_t k) { return int(k); }, params.spp, 0);
+  std::uint64_t refined = 0;
+  if (params.adaptive_spp > params.spp && !prog.cancel) {
+    const std::vector<bool> marked = contrast_edges(img, params.adaptive_contrast);
+    std::vector<int> edges;
+    for (std::size_t i = 0; i < marked.size(); ++i)
+      if (marked[i]) edges.push_back(int(i));
+    refined = edges.size();
+    prog.pixels_total += long(edges.size());
+    trace_pixels(
+        edges.size(), [&](std::size_t k) { return edges[k]; }, params.adaptive_spp, 1);
+  }
+  if (stats) {
+    stats->primary_rays = total.primary;
+    stats->shadow_rays = total.shadow;
+    stats->secondary_rays = total.secondary;
+    stats->refined_pixels = refined;
+    stats->cancelled = prog.cancel;
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return img;
+}
+
+}  // namespace bounce

@@ -1,0 +1,185 @@
+// The solver thread: commands through one queue, an immutable view
+// published after every step, errors that keep the previous scene.
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "error_tracker.h"
+#include "scene/scene_io.h"
+#include "solver_worker.h"
+#include "test_files.h"
+
+namespace bounce {
+namespace {
+
+scene cornell() {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
+  return s;
+}
+
+solver_settings coarse(double until) {
+  solver_settings o;
+  o.max_edge = 120;
+  o.stop.unshot_fraction = until;
+  return o;
+}
+
+TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
+  solver_worker worker;
+  worker.load(cornell(), coarse(0.01));
+  worker.wait_idle();
+  auto view = worker.latest();
+  ASSERT_TRUE(view->mesh);
+  ASSERT_TRUE(view->solution);
+  EXPECT_TRUE(view->converged);
+  EXPECT_FALSE(view->running);
+  EXPECT_LE(view->solution->stats.unshot_fraction, 0.01);
+  // One history point per shot, unshot falling.
+  EXPECT_EQ(view->history.size(), view->solution->stats.shots);
+  for (std::size_t i = 1; i < view->history.size(); ++i)
+    EXPECT_LE(view->history[i].unshot_fraction, view->history[i - 1].unshot_fraction + 1e-12);
+  EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
+}
+
+TEST(SolverWorker, PauseStepAndRestart) {
+  solver_worker worker;
+  worker.load(cornell(), coarse(1e-9));
+  worker.pause();
+  worker.wait_idle();
+  const std::uint64_t paused_at = worker.latest()->solution->stats.shots;
+  EXPECT_FALSE(worker.latest()->running);
+  worker.step();
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 1);
+  worker.step();
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 2);
+  // A restart while paused goes back to B = E and stays paused: no shot
+  // made, the history empty, every vertex at its emission.
+  worker.restart();
+  worker.wait_idle();
+  const auto restarted = worker.latest();
+  EXPECT_EQ(restarted->solution->stats.shots, 0u);
+  EXPECT_TRUE(restarted->history.empty());
+  EXPECT_FALSE(restarted->running);
+  for (std::size_t v = 0; v < restarted->mesh->vertex_count(); ++v) {
+    EXPECT_EQ(restarted->solution->radiosity[v], restarted->mesh->vertex_emission[v]) << "vertex " << v;
+  }
+  // Running again from there makes the same first shots as the first run.
+  worker.step();
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest()->solution->stats.shots, 1u);
+  EXPECT_EQ(worker.latest()->mesh_version, 1u);
+}
+
+// With adaptive meshing the published mesh is the refined one, and the
+// solution published with it belongs to it.
+TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
+  solver_worker worker;
+  solver_settings settings = coarse(0.05);
+  settings.max_edge = 150;
+  settings.adaptive.enabled = true;
+  settings.adaptive.tolerance = 0.15;
+  worker.load(cornell(), settings);
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ASSERT_TRUE(view->mesh && view->solution);
+  EXPECT_GT(view->solution->stats.refinements, 0u);
+  EXPECT_GT(view->mesh->element_count(), view->meshed_elements);
+  EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
+}
+
+// The history is shared between published views, not copied: a view keeps
+// the points it was published with while the worker appends.
+TEST(ConvergenceLog, AppendsAcrossBlocksAndSharesThem) {
+  convergence_log log;
+  for (int i = 0; i < 2500; ++i) log.push_back({double(i), 1.0 / (i + 1)});
+  const convergence_log published = log;
+  for (int i = 2500; i < 3000; ++i) log.push_back({double(i), 0.0});
+  ASSERT_EQ(published.size(), 2500u);
+  ASSERT_EQ(log.size(), 3000u);
+  for (std::size_t i = 0; i < published.size(); ++i) ASSERT_EQ(published[i].seconds, double(i));
+  EXPECT_EQ(published.back().unshot_fraction, 1.0 / 2500);
+  EXPECT_EQ(log.back().seconds, 2999.0);
+  log.clear();
+  EXPECT_TRUE(log.empty());
+  EXPECT_EQ(published.size(), 2500u);  // the published view keeps its points
+  EXPECT_EQ(published.front().seconds, 0.0);
+}
+
+TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
+  testing::scratch_dir dir;
+  solver_worker worker;
+  worker.load(cornell(), coarse(0.05));
+  worker.wait_idle();
+  const auto before = worker.latest();
+  worker.load_file(dir.write("bad.json", "{ not json"), coarse(0.05));
+  worker.wait_idle();
+  const auto after = worker.latest();
+  EXPECT_NE(after->error.find("bad.json:1:"), std::string::npos) << after->error;
+  EXPECT_EQ(after->mesh, before->mesh);
+  EXPECT_EQ(after->mesh_version, before->mesh_version);
+  // A good scene file replaces it and clears the error.
+  worker.load_file(testing::source_path("assets/furnace/furnace.json"), coarse(0.05));
+  worker.wait_idle();
+  EXPECT_TRUE(worker.latest()->error.empty());
+  EXPECT_EQ(worker.latest()->mesh_version, before->mesh_version + 1);
+}
+
+// The window's error plot: a path-traced reference of the camera, then the
+// error of the published solutions against it, falling as the solver
+// converges; the finished run is remembered under its setting.
+TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
+  solver_worker worker;
+  error_tracker tracker;
+  worker.load(cornell(), coarse(1e-3));
+  worker.wait_idle();
+  const auto first = worker.latest();
+  EXPECT_FALSE(tracker.status("s").ready);
+  tracker.compute_reference(first->source, first->source->view, 32, 256);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!tracker.status("s").ready && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(tracker.status("s").ready);
+  EXPECT_NE(tracker.status("s").summary.find("32x32 path traced, 256 spp"), std::string::npos);
+
+  // A run measured from its start: three single steps, each measured, then
+  // on to the criterion.
+  worker.restart();
+  worker.pause();
+  worker.wait_idle();
+  error_status status;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t before = tracker.status("s").history.size();
+    worker.step();
+    worker.wait_idle();
+    tracker.observe(*worker.latest(), "s");
+    while (tracker.status("s").history.size() == before && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(tracker.status("s").history.size(), 3u);
+  worker.resume();
+  while (std::chrono::steady_clock::now() < deadline) {
+    tracker.observe(*worker.latest(), "s");
+    status = tracker.status("s");
+    if (status.last && std::isfinite(status.last->error)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(status.last.has_value());
+  ASSERT_GE(status.history.size(), 2u);
+  for (std::size_t i = 1; i < status.history.size(); ++i)
+    EXPECT_GE(status.history[i].seconds, status.history[i - 1].seconds);
+  EXPECT_LT(status.history.back().error, status.history.front().error);
+  EXPECT_LT(status.history.back().error, 0.3);  // 120 mm elements against 32x32 pixels: coarse, but close
+  EXPECT_EQ(status.last->error, status.history.back().error);
+  EXPECT_EQ(status.last->seconds, worker.latest()->solution->stats.seconds);
+  EXPECT_LE(status.last->unshot_fraction, 1e-3);
+  EXPECT_FALSE(tracker.status("another setting").last.has_value());
+}
+
+}  // namespace
+}  // namespace bounce

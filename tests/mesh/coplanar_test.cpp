@@ -1,0 +1,245 @@
+// Coplanar overlaps (coplanar_cut.h): the triangulation of polygons with
+// holes, and the official Cornell box, whose light lies in (or 0.1 mm
+// under) an uncut ceiling, through the mesher and the ray scene.
+#include <cmath>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "cornell_files.h"
+#include "mesh/coplanar_cut.h"
+#include "mesh/patch_mesh.h"
+#include "scene/camera_math.h"
+#include "scene/scene_info.h"
+#include "scene/scene_io.h"
+#include "test_files.h"
+#include "trace/ray_scene.h"
+
+namespace bounce {
+namespace {
+
+using testing::scratch_dir;
+using testing::source_path;
+
+long long doubled_area(const std::vector<int_point>& p, const std::array<int, 3>& t) {
+  const int_point a = p[t[0]], b = p[t[1]], c = p[t[2]];
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// Every triangle counter-clockwise and their areas summing to the
+// polygon's: no overlap, no gap.
+void expect_tiles(const std::vector<int_point>& outer, const std::vector<std::vector<int_point>>& holes,
+                  long long doubled_expected) {
+  const auto triangles = triangulate_with_holes(outer, holes);
+  std::vector<int_point> all = outer;
+  for (const auto& h : holes) all.insert(all.end(), h.begin(), h.end());
+  long long sum = 0;
+  for (const auto& t : triangles) {
+    const long long a = doubled_area(all, t);
+    EXPECT_GT(a, 0);
+    sum += a;
+  }
+  EXPECT_EQ(sum, doubled_expected);
+  // Every corner is used (no T-vertex left on the outline).
+  std::vector<bool> used(all.size(), false);
+  for (const auto& t : triangles)
+    for (int k : t) used[k] = true;
+  for (std::size_t i = 0; i < all.size(); ++i) EXPECT_TRUE(used[i]) << i;
+}
+
+TEST(CoplanarCut, TriangulatesASquareWithAHole) {
+  expect_tiles({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{{3, 3}, {3, 6}, {6, 6}, {6, 3}}}, 2 * (100 - 9));
+}
+
+TEST(CoplanarCut, TriangulatesTwoHolesAndStraightCorners) {
+  // An L shape with corners along its straight sides, two holes.
+  const std::vector<int_point> outer = {{0, 0},   {5, 0},   {10, 0}, {20, 0}, {20, 10},
+                                        {10, 10}, {10, 20}, {5, 20}, {0, 20}, {0, 10}};
+  const std::vector<std::vector<int_point>> holes = {{{2, 2}, {2, 4}, {4, 4}, {4, 2}},
+                                                     {{12, 3}, {12, 7}, {18, 7}, {18, 3}}};
+  expect_tiles(outer, holes, 2 * (300 - 4 - 24));
+}
+
+scene load_official(const scratch_dir& dir, const std::string& light_y) {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(write_official_cornell(dir, light_y), s, report)) << report.error;
+  return s;
+}
+
+scene load_embedded() {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(source_path("assets/cornell_box/cornell_box.json"), s, report)) << report.error;
+  return s;
+}
+
+std::map<std::string, double> areas_by_surface(const scene& s, const patch_mesh& m) {
+  std::map<std::string, double> out;
+  for (std::size_t e = 0; e < m.element_count(); ++e) out[s.surfaces[m.element_surfaces[e]].name] += m.element_areas[e];
+  return out;
+}
+
+// Total length of the edges of `surface` that only one of its elements
+// has: the outline, plus every T-vertex's long edge and its short ones.
+double outline_length(const patch_mesh& m, int surface) {
+  std::map<std::pair<int, int>, int> uses;
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    if (m.element_surfaces[e] != surface) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.elements[e][k], b = m.elements[e][(k + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  double length = 0.0;
+  for (const auto& [edge, n] : uses)
+    if (n == 1) length += glm::length(m.positions[edge.first] - m.positions[edge.second]);
+  return length;
+}
+
+int surface_named(const scene& s, const std::string& name) {
+  for (std::size_t i = 0; i < s.surfaces.size(); ++i)
+    if (s.surfaces[i].name == name) return int(i);
+  ADD_FAILURE() << "no surface " << name;
+  return -1;
+}
+
+class OfficialCornell : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(OfficialCornell, MesherCutsTheLightOutOfTheCeiling) {
+  scratch_dir dir;
+  const scene s = load_official(dir, GetParam());
+  patch_mesh mesh;
+  std::string error;
+  mesher_params params;
+  params.max_edge = 60.0;
+  ASSERT_TRUE(make_patch_mesh(s, params, mesh, error)) << error;
+  const std::map<std::string, double> areas = areas_by_surface(s, mesh);
+  // The light keeps all its area; the ceiling loses exactly the light's.
+  const double light = 130.0 * 105.0, ceiling = 556.0 * 559.2;
+  EXPECT_NEAR(areas.at("light"), light, light * 1e-9);
+  EXPECT_NEAR(areas.at("ceiling"), ceiling - light, ceiling * 1e-9);
+  // Everything else as in the embedded box, whose ceiling is cut by hand.
+  patch_mesh embedded;
+  const scene e = load_embedded();
+  ASSERT_TRUE(make_patch_mesh(e, params, embedded, error)) << error;
+  for (const auto& [name, area] : areas_by_surface(e, embedded)) EXPECT_NEAR(areas.at(name), area, area * 1e-9) << name;
+  // No element of the ceiling inside the light's rectangle.
+  const int ceiling_surface = surface_named(s, "ceiling");
+  for (std::size_t el = 0; el < mesh.element_count(); ++el) {
+    if (mesh.element_surfaces[el] != ceiling_surface) continue;
+    vec3 c(0.0);
+    for (int k = 0; k < 3; ++k) c += mesh.positions[mesh.elements[el][k]] / 3.0;
+    EXPECT_FALSE(c.x > 213 && c.x < 343 && c.z > 227 && c.z < 332) << el;
+  }
+  // Conforming: the ceiling's one-sided edges are its outline and the
+  // hole's, nothing more (a T-vertex would add its edges).
+  EXPECT_NEAR(outline_length(mesh, ceiling_surface), 2 * (556 + 559.2) + 2 * (130 + 105), 1e-6);
+  EXPECT_NEAR(outline_length(mesh, surface_named(s, "light")), 2 * (130 + 105), 1e-6);
+}
+
+TEST_P(OfficialCornell, RaysHitTheLightNotTheCeiling) {
+  scratch_dir dir;
+  const scene s = load_official(dir, GetParam());
+  const ray_scene rays(s);
+  const int light = surface_named(s, "light"), ceiling = surface_named(s, "ceiling");
+  // From the camera and from inside the box, obliquely (straight up, the
+  // traversal happened to find the light first even without the cut).
+  int checked = 0;
+  for (const vec3 origin : {vec3(278, 273, -800), vec3(100, 500, 50), vec3(500, 400, 500)})
+    for (double x = 4; x < 556; x += 6.5)
+      for (double z = 4; z < 559; z += 6.5) {
+        const vec3 target(x, 548.8, z), d = target - origin;
+        const auto hit = rays.intersect(origin, glm::normalize(d));
+        if (!hit || hit->t < glm::length(d) - 1.0) continue;  // blocked on the way
+        ++checked;
+        const bool under_light = x > 213 && x < 343 && z > 227 && z < 332;
+        EXPECT_EQ(hit->surface, under_light ? light : ceiling)
+            << x << "," << z << ": " << s.surfaces[hit->surface].name << " at t = " << hit->t;
+      }
+  EXPECT_GT(checked, 10000);
+  EXPECT_NEAR(rays.emitter_area(), 130.0 * 105.0, 1e-6);  // the emitter keeps its area
+}
+
+INSTANTIATE_TEST_SUITE_P(LightHeights, OfficialCornell, ::testing::Values("548.8", "548.7"),
+                         [](const auto& info) { return std::string(info.param) == "548.8" ? "InPlane" : "Under"; });
+
+// Tessellates every surface and runs the cut, as the mesher does.
+coplanar_cut_stats cut(const scene& s, std::vector<triangle_mesh>& tessellated) {
+  std::vector<bool> flat;
+  for (const surface& surf : s.surfaces) {
+    tessellated.push_back(tessellate(surf, 60.0));
+    flat.push_back(std::holds_alternative<polygon_mesh>(surf.geometry));
+  }
+  const bounds3 b = scene_bounds(s);
+  return cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
+}
+
+double area(const triangle_mesh& m) {
+  double sum = 0.0;
+  for (const glm::ivec3& t : m.triangles)
+    sum += 0.5 * glm::length(glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]));
+  return sum;
+}
+
+TEST(CoplanarCut, EmbeddedBoxIsAlreadyCut) {
+  // Its light only touches the ceiling's cells along their edges.
+  std::vector<triangle_mesh> tessellated;
+  EXPECT_EQ(cut(load_embedded(), tessellated).surfaces_cut, 0u);
+}
+
+TEST(CoplanarCut, EmitterKeepsItsAreaEvenBehindTheCeiling) {
+  // 0.1 mm above the ceiling (behind it): still the ceiling is cut, so the
+  // light is seen and shoots with its whole area.
+  scratch_dir dir;
+  const scene s = load_official(dir, "548.9");
+  std::vector<triangle_mesh> tessellated;
+  const coplanar_cut_stats stats = cut(s, tessellated);
+  EXPECT_EQ(stats.surfaces_cut, 1u);
+  EXPECT_NEAR(stats.area_removed, 130.0 * 105.0, 1e-6);
+  EXPECT_NEAR(area(tessellated[surface_named(s, "light")]), 130.0 * 105.0, 1e-6);
+  EXPECT_NEAR(area(tessellated[surface_named(s, "ceiling")]), 556.0 * 559.2 - 130.0 * 105.0, 1e-6);
+}
+
+TEST(CoplanarCut, SurfacesFartherApartThanTheToleranceStayWhole) {
+  // Tolerance: 5e-4 of the diagonal (0.48 mm here). At 5 mm under the
+  // ceiling the light is a separate plane; at 0.3 mm it is not.
+  scratch_dir dir;
+  std::vector<triangle_mesh> far, near;
+  const scene s = load_official(dir, "543.8");
+  EXPECT_EQ(cut(s, far).surfaces_cut, 0u);
+  EXPECT_NEAR(area(far[surface_named(s, "ceiling")]), 556.0 * 559.2, 1e-6);
+  EXPECT_EQ(cut(load_official(dir, "548.5"), near).surfaces_cut, 1u);
+}
+
+TEST(DepthRange, ResolvesATenthOfAMillimetreAtTheBackOfTheCornellBox) {
+  // 24-bit depth: points 0.1 mm apart along the view at the far end of the
+  // light (z = 332) and at the back wall must land several depth steps
+  // apart. With near = far / 1e4 (before) they were 0.3 steps apart.
+  camera c;
+  c.eye = vec3(278, 273, -800);
+  c.target = vec3(278, 273, 0);
+  c.fov_y_degrees = 39.3;
+  const bounds3 box{vec3(0.0), vec3(556, 548.8, 559.2)};
+  const glm::dmat4 clip = projection_matrix(c, box) * view_matrix(c);
+  auto depth_steps = [&](const vec3& p) {
+    auto window_z = [&](const vec3& q) {
+      const glm::dvec4 h = clip * glm::dvec4(q, 1.0);
+      return 0.5 * (h.z / h.w + 1.0);
+    };
+    const vec3 towards_eye = glm::normalize(c.eye - p);
+    return (window_z(p) - window_z(p + 0.1 * towards_eye)) * double(1 << 24);
+  };
+  EXPECT_GT(depth_steps(vec3(213, 548.8, 332)), 4.0);
+  EXPECT_GT(depth_steps(vec3(0, 548.8, 559.2)), 4.0);
+  // Inside the box the near plane falls back to far / 1e4.
+  c.eye = vec3(278, 273, 279);
+  c.target = vec3(278, 273, 600);
+  const glm::dmat4 inside = projection_matrix(c, box);
+  const double near = inside[3][2] / (inside[2][2] - 1.0);
+  EXPECT_GT(near, 0.0);
+  EXPECT_LT(near, 1.0);
+}
+
+}  // namespace
+}  // namespace bounce
