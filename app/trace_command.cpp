@@ -156,8 +156,8 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
 
   trace_progress progress;
   trace_stats stats;
-  auto job =
-      std::async(std::launch::async, [&] { return trace_image(s, rays, field.get(), params, &progress, &stats); });
+  auto job = std::async(std::launch::async,
+                        [&] { return trace_image(s, s.view, rays, field.get(), params, &progress, &stats); });
   while (job.wait_for(std::chrono::seconds(1)) != std::future_status::ready) {
     const long total = progress.pixels_total;
     std::printf("tracing %5.1f%%\n", total > 0 ? 100.0 * double(progress.pixels_done) / double(total) : 0.0);

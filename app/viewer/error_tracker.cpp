@@ -23,9 +23,8 @@ error_tracker::~error_tracker() {
 }
 
 void error_tracker::compute_reference(std::shared_ptr<const scene> source, const camera& view, int size, int spp) {
-  auto request = std::make_shared<scene>(*source);
-  request->view = view;
-  request->view.width = request->view.height = size;
+  camera request = view;
+  request.width = request.height = size;
   auto progress = std::make_shared<trace_progress>();
   {
     const std::lock_guard lock(mutex_);
@@ -82,7 +81,7 @@ error_status error_tracker::status(const std::string& setting) const {
   return s;
 }
 
-void error_tracker::trace_reference(std::shared_ptr<const scene> request, std::shared_ptr<const scene> source, int spp,
+void error_tracker::trace_reference(camera request, std::shared_ptr<const scene> source, int spp,
                                     std::shared_ptr<trace_progress> progress) {
   if (progress->cancel) return;  // replaced before it started
   {
@@ -94,21 +93,30 @@ void error_tracker::trace_reference(std::shared_ptr<const scene> request, std::s
   params.spp = spp;
   trace_stats stats;
   bench_truth truth;
-  truth.picture = trace_image(*request, ray_scene(*request), nullptr, params, progress.get(), &stats);
-  truth.exclude_above = emitter_threshold(*request);
+  truth.picture = trace_image(*source, request, ray_scene(*source), nullptr, params, progress.get(), &stats);
+  truth.exclude_above = emitter_threshold(*source);
+  // The judge refers to its scene: whoever holds the judge holds the scene.
+  struct scene_and_judge {
+    scene_and_judge(std::shared_ptr<const scene> s, const camera& view, const bench_truth& truth)
+        : source(std::move(s)), judge(*source, view, truth) {}
+    std::shared_ptr<const scene> source;
+    picture_judge judge;
+  };
   std::shared_ptr<const picture_judge> judge;
-  if (!stats.cancelled) judge = std::make_shared<picture_judge>(*request, truth);
+  if (!stats.cancelled) {
+    auto both = std::make_shared<scene_and_judge>(source, request, truth);
+    judge = std::shared_ptr<const picture_judge>(both, &both->judge);
+  }
   const std::lock_guard lock(mutex_);
   computing_ = false;
   if (!judge) return;
   judge_ = judge;
-  judge_scene_ = request;
   reference_source_ = source;
   queued_version_ = ~0ull;
   history_.clear();
   char line[160];
   std::snprintf(line, sizeof line, "reference: %dx%d path traced, %d spp, %.1f s; error = relative RMSE, 4x4 blocks",
-                request->view.width, request->view.height, spp, stats.seconds);
+                request.width, request.height, spp, stats.seconds);
   summary_ = line;
 }
 

@@ -60,7 +60,7 @@ class error_tracker {
 
  private:
   struct job;
-  void trace_reference(std::shared_ptr<const scene> request, std::shared_ptr<const scene> source, int spp,
+  void trace_reference(camera request, std::shared_ptr<const scene> source, int spp,
                        std::shared_ptr<trace_progress> progress);
   void measure();
 
@@ -69,7 +69,6 @@ class error_tracker {
   // Guarded by mutex_.
   std::shared_ptr<trace_progress> progress_;  // of the newest reference asked for; each has its own
   std::shared_ptr<const picture_judge> judge_;
-  std::shared_ptr<const scene> judge_scene_;       // the judge's scene (reference camera), kept alive for it
   std::shared_ptr<const scene> reference_source_;  // solutions of this scene are measured
   bool computing_ = false;
   std::string summary_ = "no reference: press 'Reference' to path trace one";

@@ -37,10 +37,8 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
     progress_ = progress;
   }
   jobs_.post([this, progress, source, view, mesh, solution, params] {
-    scene s = *source;
-    s.view = view;
     trace_params p = params;
-    const ray_scene rays(s);
+    const ray_scene rays(*source);
     std::unique_ptr<radiosity_field> field;
     if (mesh && solution && solution->radiosity.size() == mesh->vertex_count()) {
       field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct);
@@ -48,12 +46,12 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
       p.diffuse = diffuse_source::ambient;
     }
     auto out = std::make_shared<still_result>();
-    out->picture = trace_image(s, rays, field.get(), p, progress.get(), &out->stats);
+    out->picture = trace_image(*source, view, rays, field.get(), p, progress.get(), &out->stats);
     if (!out->stats.cancelled) {
       const trace_stats& st = out->stats;
       char line[256];
       std::snprintf(
-          line, sizeof line, "%dx%d, %d spp%s: %.2f s, %.2f Mrays/s", s.view.width, s.view.height, p.spp,
+          line, sizeof line, "%dx%d, %d spp%s: %.2f s, %.2f Mrays/s", view.width, view.height, p.spp,
           p.method == integrator::path ? " path traced" : "", st.seconds,
           st.seconds > 0 ? double(st.primary_rays + st.shadow_rays + st.secondary_rays) / st.seconds * 1e-6 : 0.0);
       out->summary = line;

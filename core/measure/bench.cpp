@@ -58,7 +58,7 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
   if (setting.measure_error) {
     clock.exclude([&] {
       if (truth.exact == exact_kind::none)
-        pictures = std::make_unique<picture_judge>(s, truth);
+        pictures = std::make_unique<picture_judge>(s, s.view, truth);
       else
         vertices = std::make_unique<vertex_judge>(s, truth.exact);
     });
@@ -135,7 +135,7 @@ bench_result run_reference(const scene& s, const bench_setting& setting, const b
   std::unique_ptr<vertex_judge> vertices;
   if (setting.measure_error) {
     if (truth.exact == exact_kind::none)
-      pictures = std::make_unique<picture_judge>(s, truth);
+      pictures = std::make_unique<picture_judge>(s, s.view, truth);
     else
       vertices = std::make_unique<vertex_judge>(s, truth.exact);
   }
@@ -167,7 +167,7 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
     return result;
   }
   run_clock clock;
-  picture_judge pictures(s, truth);
+  picture_judge pictures(s, s.view, truth);
   result.setup_seconds = clock.wall();  // the ray-tracing BVH
   const double setup_cpu = clock.cpu();
   result.curves.push_back({"path", {}});
@@ -179,7 +179,7 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
     params.seed = 2;  // the reference is traced with seed 1: independent noise
     trace_stats stats;
     const double c0 = cpu_seconds();
-    const image picture = trace_image(s, pictures.rays(), nullptr, params, nullptr, &stats);
+    const image picture = trace_image(s, s.view, pictures.rays(), nullptr, params, nullptr, &stats);
     bench_point p;
     p.cpu_seconds = setup_cpu + cpu_seconds() - c0;  // each picture is its own run: set-up plus its trace
     p.seconds = result.setup_seconds + stats.seconds;

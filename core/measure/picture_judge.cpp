@@ -10,8 +10,8 @@
 
 namespace bounce {
 
-picture_judge::picture_judge(const scene& s, const bench_truth& truth)
-    : scene_(s), downsample_(truth.downsample), still_spp_(truth.still_spp), rays_(s) {
+picture_judge::picture_judge(const scene& s, const camera& view, const bench_truth& truth)
+    : scene_(s), view_(view), downsample_(truth.downsample), still_spp_(truth.still_spp), rays_(s) {
   image reference = truth.picture;
   exclude_pixels(reference, bright_pixels(reference, truth.exclude_above), 1);
   reference_ = downsample(reference, downsample_);
@@ -30,7 +30,7 @@ picture_judge::verdict picture_judge::judge_solution(const patch_mesh& mesh, std
   trace_params params;
   params.spp = still_spp_;
   params.diffuse = source;
-  verdict v = judge(trace_image(scene_, rays_, &field, params));
+  verdict v = judge(trace_image(scene_, view_, rays_, &field, params));
   v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   v.cpu_seconds = cpu_seconds() - c0;
   return v;
@@ -51,7 +51,7 @@ image path_reference(const scene& s, int spp, std::uint64_t seed) {
   params.method = integrator::path;
   params.spp = spp;
   params.seed = seed;
-  return trace_image(s, rays, nullptr, params);
+  return trace_image(s, s.view, rays, nullptr, params);
 }
 
 }  // namespace bounce

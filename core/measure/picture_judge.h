@@ -35,7 +35,8 @@ struct bench_truth {
 // must outlive the judge.
 class picture_judge {
  public:
-  picture_judge(const scene& s, const bench_truth& truth);
+  // Judges pictures of `s` as `view` sees them (the reference's camera and size).
+  picture_judge(const scene& s, const camera& view, const bench_truth& truth);
 
   struct verdict {
     double error = not_measured, max_error = not_measured;
@@ -51,6 +52,7 @@ class picture_judge {
 
  private:
   const scene& scene_;
+  camera view_;
   int downsample_ = 4, still_spp_ = 4;
   ray_scene rays_;
   image reference_;

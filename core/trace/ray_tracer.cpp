@@ -94,13 +94,13 @@ struct surface_point {
 
 class tracer {
  public:
-  tracer(const scene& s, const ray_scene& rays, const radiosity_field* field, const trace_params& p)
-      : s_(s), rays_(rays), field_(field), p_(p), offset_(rays.surface_offset()) {
+  tracer(const scene& s, const camera& view, const ray_scene& rays, const radiosity_field* field, const trace_params& p)
+      : s_(s), view_(view), rays_(rays), field_(field), p_(p), offset_(rays.surface_offset()) {
     for (const texture& tex : s.textures) texture_means_.push_back(texture_mean(tex));
   }
 
   rgb pixel(int x, int y, int samples, std::uint64_t pass, counters& c) const {
-    random_stream rng(p_.seed, std::uint64_t(y) * std::uint64_t(s_.view.width) + std::uint64_t(x), pass);
+    random_stream rng(p_.seed, std::uint64_t(y) * std::uint64_t(view_.width) + std::uint64_t(x), pass);
     std::vector<vec2> offsets;
     if (samples <= 1)
       offsets.assign(1, vec2(0.5));
@@ -108,10 +108,9 @@ class tracer {
       stratified_points(samples, rng, offsets);
     rgb sum(0.0);
     for (const vec2& o : offsets) {
-      const vec3 d = camera_ray_direction(s_.view, x + o.x, y + o.y);
+      const vec3 d = camera_ray_direction(view_, x + o.x, y + o.y);
       ++c.primary;
-      sum +=
-          p_.method == integrator::path ? path(s_.view.eye, d, rng, c) : whitted(s_.view.eye, d, 0, rgb(1.0), rng, c);
+      sum += p_.method == integrator::path ? path(view_.eye, d, rng, c) : whitted(view_.eye, d, 0, rgb(1.0), rng, c);
     }
     return sum / double(offsets.size());
   }
@@ -312,6 +311,7 @@ class tracer {
   }
 
   const scene& s_;
+  const camera& view_;
   const ray_scene& rays_;
   const radiosity_field* field_;
   trace_params p_;
@@ -321,13 +321,13 @@ class tracer {
 
 }  // namespace
 
-image trace_image(const scene& s, const ray_scene& rays, const radiosity_field* field, const trace_params& params,
-                  trace_progress* progress, trace_stats* stats) {
+image trace_image(const scene& s, const camera& view, const ray_scene& rays, const radiosity_field* field,
+                  const trace_params& params, trace_progress* progress, trace_stats* stats) {
   const auto start = std::chrono::steady_clock::now();
-  const tracer t(s, rays, field, params);
+  const tracer t(s, view, rays, field, params);
   image img;
-  img.width = s.view.width;
-  img.height = s.view.height;
+  img.width = view.width;
+  img.height = view.height;
   img.pixels.assign(std::size_t(img.width) * img.height * 3, 0.0f);
   trace_progress local_progress;
   trace_progress& prog = progress ? *progress : local_progress;

@@ -55,10 +55,12 @@ struct trace_stats {
   bool cancelled = false;
 };
 
-// Traces `s.view` at its size. `field` is the radiosity solution for the
-// two-pass modes (required for diffuse_source::radiosity/traced_direct with
-// the Whitted integrator; ignored by the path tracer).
-image trace_image(const scene& s, const ray_scene& rays, const radiosity_field* field, const trace_params& params,
-                  trace_progress* progress = nullptr, trace_stats* stats = nullptr);
+// Traces the scene as `view` sees it, at the view's size (any camera: the
+// scene's own is s.view). `rays` is the ray scene of `s`. `field` is the
+// radiosity solution for the two-pass modes (required for
+// diffuse_source::radiosity/traced_direct with the Whitted integrator;
+// ignored by the path tracer).
+image trace_image(const scene& s, const camera& view, const ray_scene& rays, const radiosity_field* field,
+                  const trace_params& params, trace_progress* progress = nullptr, trace_stats* stats = nullptr);
 
 }  // namespace bounce

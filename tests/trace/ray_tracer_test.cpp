@@ -143,7 +143,7 @@ TEST(Whitted, PointLightOnADiffusePlaneIsRhoOverPiTimesIrradiance) {
   const ray_scene rays(s);
   trace_params p;
   p.diffuse = diffuse_source::ambient;
-  const image img = trace_image(s, rays, nullptr, p);
+  const image img = trace_image(s, s.view, rays, nullptr, p);
   for (int y = 0; y < img.height; y += 4)
     for (int x = 0; x < img.width; x += 4) {
       const vec3 d = camera_ray_direction(s.view, x + 0.5, y + 0.5);
@@ -163,10 +163,10 @@ TEST(Whitted, ShadowsAreBlackWithoutAmbientAndLitByIt) {
   const ray_scene rays(s);
   trace_params p;
   p.diffuse = diffuse_source::ambient;
-  const image dark = trace_image(s, rays, nullptr, p);
+  const image dark = trace_image(s, s.view, rays, nullptr, p);
   EXPECT_EQ(dark.at(16, 16).g, 0.0f);
   p.ambient_irradiance = rgb(2.0);
-  const image lit = trace_image(s, rays, nullptr, p);
+  const image lit = trace_image(s, s.view, rays, nullptr, p);
   EXPECT_NEAR(lit.at(16, 16).g, 0.5 * 2.0 / pi, 1e-7);  // float pixels
 }
 
@@ -185,7 +185,7 @@ TEST(Whitted, MirrorShowsWhatItFacesTimesKr) {
   const ray_scene rays(s);
   trace_params p;
   p.diffuse = diffuse_source::ambient;
-  const image img = trace_image(s, rays, nullptr, p);
+  const image img = trace_image(s, s.view, rays, nullptr, p);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) EXPECT_NEAR(img.at(x, y).r, 0.7 * 3.0, 1e-6);  // float pixels
 }
@@ -218,7 +218,7 @@ TEST(Whitted, GlassSlabPassesLightWithFresnelLossesOnly) {
   p.diffuse = diffuse_source::ambient;
   p.max_depth = 20;
   const double t = 1.0 - 0.04;
-  EXPECT_NEAR(trace_image(s, rays, nullptr, p).at(1, 1).r, t * t, 2e-3);
+  EXPECT_NEAR(trace_image(s, s.view, rays, nullptr, p).at(1, 1).r, t * t, 2e-3);
 }
 
 TEST(Whitted, SameSeedSamePictureOnAnyNumberOfThreads) {
@@ -231,12 +231,12 @@ TEST(Whitted, SameSeedSamePictureOnAnyNumberOfThreads) {
   p.diffuse = diffuse_source::ambient;
   p.spp = 4;
   p.adaptive_spp = 16;
-  const image a = trace_image(small, rays, nullptr, p);
+  const image a = trace_image(small, small.view, rays, nullptr, p);
   p.parallel = false;
-  const image b = trace_image(small, rays, nullptr, p);
+  const image b = trace_image(small, small.view, rays, nullptr, p);
   EXPECT_EQ(a.pixels, b.pixels);
   p.seed = 2;
-  EXPECT_NE(trace_image(small, rays, nullptr, p).pixels, a.pixels);
+  EXPECT_NE(trace_image(small, small.view, rays, nullptr, p).pixels, a.pixels);
 }
 
 TEST(Whitted, AdaptiveSupersamplingRefinesOnlyEdges) {
@@ -248,7 +248,7 @@ TEST(Whitted, AdaptiveSupersamplingRefinesOnlyEdges) {
   p.diffuse = diffuse_source::ambient;
   p.adaptive_spp = 16;
   trace_stats stats;
-  trace_image(s, rays, nullptr, p, nullptr, &stats);
+  trace_image(s, s.view, rays, nullptr, p, nullptr, &stats);
   EXPECT_GT(stats.refined_pixels, 100u);
   EXPECT_LT(stats.refined_pixels, 64u * 48u / 2);
   EXPECT_EQ(stats.primary_rays, 64u * 48u + 16u * stats.refined_pixels);
@@ -260,7 +260,7 @@ TEST(Whitted, CancelStopsTheTrace) {
   trace_progress progress;
   progress.cancel = true;
   trace_stats stats;
-  trace_image(s, rays, nullptr, trace_params{}, &progress, &stats);
+  trace_image(s, s.view, rays, nullptr, trace_params{}, &progress, &stats);
   EXPECT_TRUE(stats.cancelled);
   EXPECT_EQ(stats.primary_rays, 0u);
 }
@@ -288,7 +288,7 @@ TEST(TwoPass, FurnaceStillIsTheExactRadianceEverywhere) {
     trace_params p;
     p.diffuse = mode;
     p.light_samples = 64;
-    const image img = trace_image(s, rays, &field, p);
+    const image img = trace_image(s, s.view, rays, &field, p);
     // Direct light by 64 shadow rays is noisy near the box's edges (1/d^2).
     const double tolerance = mode == diffuse_source::radiosity ? 1e-3 : 0.15;
     EXPECT_NEAR(mean_radiance(img), 2.0, mode == diffuse_source::radiosity ? 1e-3 : 0.01);
@@ -335,7 +335,7 @@ image furnace_path(int size, int spp, std::uint64_t seed) {
   p.method = integrator::path;
   p.spp = spp;
   p.seed = seed;
-  return trace_image(s, rays, nullptr, p);
+  return trace_image(s, s.view, rays, nullptr, p);
 }
 
 TEST(PathTracer, FurnaceConvergesToEOverOneMinusRho) {
@@ -360,9 +360,9 @@ TEST(PathTracer, PointLightOnADiffusePlaneMatchesWhitted) {
   const ray_scene rays(s);
   trace_params p;
   p.diffuse = diffuse_source::ambient;
-  const image whitted = trace_image(s, rays, nullptr, p);
+  const image whitted = trace_image(s, s.view, rays, nullptr, p);
   p.method = integrator::path;
-  const image path = trace_image(s, rays, nullptr, p);
+  const image path = trace_image(s, s.view, rays, nullptr, p);
   EXPECT_LT(relative_rmse(path, whitted), 1e-9);
 }
 
