@@ -40,8 +40,7 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
   if (solver.adaptive.enabled)
     std::printf("a priori refinement: %zu marks at contacts, %zu near emitters; %zu -> %zu elements\n",
                 a_priori.contact, a_priori.emitter, a_priori.elements_before, a_priori.elements_after);
-  if (mesh.nonmanifold_faces)
-    std::fprintf(stderr, "warning: %zu non-manifold face(s) kept with vertices of their own\n", mesh.nonmanifold_faces);
+  warn_about_mesh(s, mesh);
 
   auto state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
   constexpr std::size_t baseline_rays = 2'000'000;

@@ -1,5 +1,6 @@
 #include "solver_stats.h"
 
+#include <cstdio>
 #include <fstream>
 
 namespace bounce {
@@ -49,6 +50,15 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
         {"unshot", to_json(pb.unshot)},
         {"refined", to_json(pb.refined)}}},
   };
+}
+
+void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
+  if (mesh.nonmanifold_faces)
+    std::fprintf(stderr, "warning: %s: %zu non-manifold face(s) kept with vertices of their own\n", s.source.c_str(),
+                 mesh.nonmanifold_faces);
+  if (mesh.uncut_overlaps)
+    std::fprintf(stderr, "warning: %s: %zu coplanar overlap(s) could not be cut out of the surface behind\n",
+                 s.source.c_str(), mesh.uncut_overlaps);
 }
 
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {

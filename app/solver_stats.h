@@ -18,6 +18,10 @@ namespace bounce {
 nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings, const patch_mesh& meshed,
                                  const radiosity_state& state, double mesh_seconds);
 
+// Warns on standard error about what the mesher had to leave imperfect
+// (non-manifold faces, coplanar overlaps it could not cut).
+void warn_about_mesh(const scene& s, const patch_mesh& mesh);
+
 // Writes `stats` to `path`; false with `error` (naming the file) on failure.
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error);
 

@@ -25,6 +25,7 @@ namespace {
 using clock_type = std::chrono::steady_clock;
 
 struct solved {
+  solver_settings settings;  // what it was solved with (the coarse pass has its own)
   patch_mesh mesh;
   std::unique_ptr<radiosity_state> state;
   double mesh_seconds = 0.0;
@@ -32,6 +33,7 @@ struct solved {
 
 // Meshes and runs the progressive solver to the options' criterion.
 bool solve(const scene& s, const solver_settings& solver, solved& out) {
+  out.settings = solver;
   std::string error;
   const auto mesh_start = clock_type::now();
   if (!make_patch_mesh(s, mesher_params_for(solver, s), out.mesh, error)) {
@@ -39,6 +41,7 @@ bool solve(const scene& s, const solver_settings& solver, solved& out) {
     return false;
   }
   out.mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
+  warn_about_mesh(s, out.mesh);
   out.state = make_radiosity_state(s, out.mesh, radiosity_params_for(solver));
   run_radiosity(*out.state, solver.stop, [](const radiosity_state&) {});
   return true;
@@ -212,7 +215,7 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
                             {"scene_build_seconds", build_seconds}}}};
     // The radiosity pass, when the still used one (two-pass, or the coarse
     // solution a one-pass ambient term came from).
-    if (pass.state) out["radiosity"] = solver_stats_json(s, solver, pass.mesh, *pass.state, pass.mesh_seconds);
+    if (pass.state) out["radiosity"] = solver_stats_json(s, pass.settings, pass.mesh, *pass.state, pass.mesh_seconds);
     if (!write_stats(options.stats_path, out, error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;

@@ -39,11 +39,11 @@ void error_tracker::observe(const worker_view& view, const std::string& setting)
   {
     const std::lock_guard lock(mutex_);
     const std::uint64_t version = view.solution->version;
-    if (view.mesh_version != mesh_version_ || version < last_version_) {
+    if (view.run != worker_run_) {
       history_.clear();  // a new mesh or a restart: a new run
       pending_.reset();
       ++run_;
-      mesh_version_ = view.mesh_version;
+      worker_run_ = view.run;
       last_version_ = 0;
       queued_version_ = ~0ull;
     }

@@ -74,8 +74,8 @@ class error_tracker {
   std::string summary_ = "no reference: press 'Reference' to path trace one";
   std::shared_ptr<const job> pending_;  // newest solution not yet measured
   std::vector<error_point> history_;
-  std::uint64_t mesh_version_ = 0, last_version_ = 0;
-  std::uint64_t queued_version_ = ~0ull;  // the solution last queued for measuring
+  std::uint64_t worker_run_ = 0, last_version_ = 0;  // the worker's run last seen, and its last solution
+  std::uint64_t queued_version_ = ~0ull;             // the solution last queued for measuring
   std::map<std::string, last_run> runs_;
   bool run_recorded_ = false;
   bool queued_converged_ = false;  // whether the queued solution was queued as converged

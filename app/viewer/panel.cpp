@@ -116,8 +116,11 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
       ImGui::SliderInt("hemicube", &ff.hemicube_resolution, 16, 512);
     stop_criterion& stop = state.solver.stop;
     float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
-    ImGui::SliderFloat("stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f");
-    stop.unshot_fraction = std::pow(10.0, double(until));
+    // Applies at once; the value is left as typed until the slider moves.
+    if (ImGui::SliderFloat("stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f")) {
+      stop.unshot_fraction = std::pow(10.0, double(until));
+      act.set_stop = true;
+    }
     // Adaptive meshing: refine where the light changes (applies on re-mesh).
     adaptive_params& adaptive = state.solver.adaptive;
     ImGui::Checkbox("adaptive meshing", &adaptive.enabled);

@@ -53,6 +53,7 @@ struct panel_actions {
   bool frame_scene = false, reset_camera = false;
   bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
   bool compute_reference = false;  // path trace a reference of the camera for the error plot
+  bool set_stop = false;           // the stopping point changed: the running solver takes it
 };
 
 // Draws the panel into the current ImGui frame. `frame_ms` is the last

@@ -121,9 +121,11 @@ void solver_worker::handle(command& c) {
       state_ = make_radiosity_state(*scene_, *mesh_, radiosity_params_for(c.settings));
       criterion_ = c.settings.stop;
       ++mesh_version_;
+      ++run_;
       history_.clear();
       error_.clear();
       paused_ = false;
+      single_step_ = false;
       exhausted_ = false;
       break;
     }
@@ -140,7 +142,9 @@ void solver_worker::handle(command& c) {
     case kind::restart:
       if (state_) {
         restart_radiosity(*state_);
+        ++run_;
         history_.clear();
+        single_step_ = false;
         exhausted_ = false;
       }
       break;
@@ -153,6 +157,7 @@ void solver_worker::handle(command& c) {
 void solver_worker::publish() {
   auto v = std::make_shared<worker_view>();
   v->mesh_version = mesh_version_;
+  v->run = run_;
   v->source = scene_;
   v->mesh = state_ && state_->refined_mesh ? state_->refined_mesh : mesh_;  // adaptive meshing refines it
   v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
@@ -171,11 +176,15 @@ void solver_worker::run() {
   publish();
   for (;;) {
     std::unique_ptr<command> next;
+    // Worker-thread state only: no lock needed to decide.
+    const bool work = state_ && (!paused_ || single_step_) && !(exhausted_ || stop_reached(*state_, criterion_));
+    if (!work) {
+      single_step_ = false;         // a step asked for when nothing was left
+      if (unpublished_) publish();  // the last step's state, before going idle (outside the lock)
+    }
     {
       std::unique_lock lock(mutex_);
-      const bool work = state_ && (!paused_ || single_step_) && !(exhausted_ || stop_reached(*state_, criterion_));
       if (queue_.empty() && !work) {
-        if (unpublished_) publish();  // the last step's state, before going idle
         idle_ = true;
         wake_.wait(lock, [this] { return quit_ || !queue_.empty(); });
       }
@@ -194,8 +203,11 @@ void solver_worker::run() {
     // the newest iteration at every frame, and no snapshot is built that no
     // frame takes. The shot runs on all cores but one, which stays free for
     // drawing (Mesa's llvmpipe renders on the CPU): the UI must not stall.
-    arena_.execute([&] { exhausted_ = !step_radiosity(*state_); });  // nothing left: done
+    bool stepped = false;
+    arena_.execute([&] { stepped = step_radiosity(*state_); });
+    exhausted_ = !stepped;  // nothing left: done
     single_step_ = false;
+    if (!stepped) continue;
     history_.push_back({state_->stats.seconds, state_->stats.unshot_fraction});
     unpublished_ = true;
     if (wanted_.exchange(false)) publish();

@@ -51,7 +51,8 @@ class convergence_log {
 
 // What the UI sees, immutable once published.
 struct worker_view {
-  std::uint64_t mesh_version = 0;  // a new run: changes when a new scene or mesh density is loaded
+  std::uint64_t mesh_version = 0;  // changes when a new scene or mesh density is loaded
+  std::uint64_t run = 0;           // a new run: changes with every load and restart
   std::shared_ptr<const scene> source;
   // The mesh being solved, which the solution belongs to: a new one with
   // each refinement pass (adaptive meshing). The view uploads it when it
@@ -117,6 +118,7 @@ class solver_worker {
   bool single_step_ = false;
   bool exhausted_ = false;
   std::uint64_t mesh_version_ = 0;
+  std::uint64_t run_ = 0;
   convergence_log history_;
   bool unpublished_ = false;  // steps made since the last publish
   mutable std::atomic<bool> wanted_{true};

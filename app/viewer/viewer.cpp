@@ -72,6 +72,7 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.save_still_png |= b.save_still_png;
   a.save_still_pfm |= b.save_still_pfm;
   a.compute_reference |= b.compute_reference;
+  a.set_stop |= b.set_stop;
   return a;
 }
 
@@ -114,7 +115,7 @@ class viewer_app {
   pointer_state pointer_;
   std::shared_ptr<const patch_mesh> uploaded_mesh_;
   std::shared_ptr<const scene> shown_source_;
-  std::uint64_t uploaded_version_ = ~0ull;
+  std::shared_ptr<const radiosity_snapshot> uploaded_solution_;  // a snapshot is new when it is another object
   std::string shown_error_;
   double frame_ms_ = 0.0;
   int width_ = 0, height_ = 0;  // framebuffer, this frame
@@ -168,7 +169,7 @@ void viewer_app::take_published_work(const worker_view& view) {
   if (view.mesh && view.mesh != uploaded_mesh_) {
     renderer_.upload(*view.mesh);
     uploaded_mesh_ = view.mesh;
-    uploaded_version_ = ~0ull;
+    uploaded_solution_.reset();
   }
   if (view.source != shown_source_) {
     if (shown_source_) {  // a newly opened scene brings its camera
@@ -177,12 +178,12 @@ void viewer_app::take_published_work(const worker_view& view) {
     }
     shown_source_ = view.source;
   }
-  if (view.solution && view.solution->version != uploaded_version_) {
+  if (view.solution && view.solution != uploaded_solution_) {
     const auto start = clock_type::now();
     renderer_.update(*view.solution);
     glFinish();  // llvmpipe copies on the CPU: finish so the time is the upload's
     timing_.upload(milliseconds_since(start));
-    uploaded_version_ = view.solution->version;
+    uploaded_solution_ = view.solution;
   }
   if (view.error != shown_error_) {
     shown_error_ = view.error;
@@ -253,6 +254,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
 void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
   if (act.open_scene) worker_.load_file(panel_.scene_path, panel_.solver);
   if (act.apply_mesh && view.source) worker_.load(*view.source, panel_.solver);
+  if (act.set_stop) worker_.set_criterion(panel_.solver.stop);
   if (act.pause) worker_.pause();
   if (act.resume) worker_.resume();
   if (act.step) worker_.step();

@@ -1,14 +1,18 @@
 #include "base/background_worker.h"
 
+#include <cstdio>
+#include <exception>
+
 namespace bounce {
 
 background_worker::background_worker() : thread_([this] { run(); }) {}
 
 background_worker::~background_worker() {
+  std::deque<std::function<void()>> dropped;  // released outside the lock
   {
     const std::lock_guard lock(mutex_);
     quit_ = true;
-    tasks_.clear();
+    dropped.swap(tasks_);
   }
   changed_.notify_all();
   thread_.join();
@@ -41,7 +45,11 @@ void background_worker::run() {
     tasks_.pop_front();
     running_task_ = true;
     lock.unlock();
-    task();
+    try {
+      task();
+    } catch (const std::exception& e) {  // e.g. out of memory for a huge still: the program goes on
+      std::fprintf(stderr, "error: background task failed: %s\n", e.what());
+    }
     task = nullptr;  // what it holds is released outside the lock
     lock.lock();
     running_task_ = false;

@@ -474,6 +474,8 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
               new_area += 0.5 * glm::length(triangle_cross(m, int(t)));
             ++stats.surfaces_cut;
             stats.area_removed += old_area - new_area;
+          } else {
+            ++stats.pieces_left_uncut;  // the overlap stays: said, not hidden
           }
         }
       }

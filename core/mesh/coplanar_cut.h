@@ -25,8 +25,9 @@ inline constexpr double coplanar_relative_tolerance = 5e-4;
 inline constexpr double coplanar_max_angle = 1e-3;
 
 struct coplanar_cut_stats {
-  std::size_t surfaces_cut = 0;  // (surface, material) pieces that lost area
-  double area_removed = 0.0;     // scene units squared
+  std::size_t surfaces_cut = 0;       // (surface, material) pieces that lost area
+  double area_removed = 0.0;          // scene units squared
+  std::size_t pieces_left_uncut = 0;  // covered pieces whose remainder could not be triangulated: left whole
 };
 
 // Cuts coplanar overlaps out of the triangles of flat surfaces, in place.

@@ -253,7 +253,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     tessellated.push_back(tessellate(surf, max_edge));
     flat.push_back(std::holds_alternative<polygon_mesh>(surf.geometry));
   }
-  cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
+  const coplanar_cut_stats cuts = cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
   working_mesh w;
   std::size_t nonmanifold = 0;
   for (std::size_t i = 0; i < s.surfaces.size(); ++i)
@@ -305,6 +305,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.patch_areas.push_back(0.5 * glm::length(cross));
   }
   pm.nonmanifold_faces = nonmanifold;
+  pm.uncut_overlaps = cuts.pieces_left_uncut;
   if (params.a_priori_min_edge > 0.0) {
     if (params.a_priori_min_edge < max_edge / 256.0) {
       error = "min edge " + std::to_string(params.a_priori_min_edge) + " is below max edge / 256 (" +
@@ -421,6 +422,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   out.scene_diagonal = mesh.scene_diagonal;
   out.max_edge = mesh.max_edge;
   out.nonmanifold_faces = mesh.nonmanifold_faces;
+  out.uncut_overlaps = mesh.uncut_overlaps;
   out.positions = std::move(mesh.positions);
   out.normals = std::move(mesh.normals);
   out.receive_points = std::move(mesh.receive_points);

@@ -45,6 +45,7 @@ struct patch_mesh {
   double scene_diagonal = 1.0;        // bounding box diagonal: the scale of every offset
   double max_edge = 0.0;              // the element size it was built for
   std::size_t nonmanifold_faces = 0;  // faces kept with vertices of their own (bad input topology)
+  std::size_t uncut_overlaps = 0;     // coplanar overlaps that could not be cut (coplanar_cut.h): they z-fight
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t element_count() const { return elements.size(); }

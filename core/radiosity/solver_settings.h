@@ -23,9 +23,9 @@ struct radiosity_params;
 // so a limit means the same whether the run is driven by `run_radiosity`,
 // the window's worker or the bench.
 struct stop_criterion {
-  double unshot_fraction = 0.01;  // stop at or below this, once every emitter has shot (0: no limit)
-  std::uint64_t max_shots = 0;    // 0: no limit
-  double seconds = 0.0;           // solver time; 0: no limit
+  double unshot_fraction = 0.0;  // stop at or below this, once every emitter has shot (0: no limit)
+  std::uint64_t max_shots = 0;   // 0: no limit
+  double seconds = 0.0;          // solver time; 0: no limit
 };
 
 // True when `state` meets `stop`.
@@ -37,8 +37,8 @@ struct solver_settings {
   double max_edge = 0.0;     // longest element edge; 0: the scene's default
   double patch_edge = -1.0;  // shooting patches (substructuring); 0: elements shoot; < 0: the default
   form_factor_params form_factors;
-  adaptive_params adaptive;  // adaptive.min_edge 0: the default for the element size
-  stop_criterion stop;
+  adaptive_params adaptive;           // adaptive.min_edge 0: the default for the element size
+  stop_criterion stop{0.01, 0, 0.0};  // 1% of the power left unshot; no shot or time limit
 };
 
 // The mesher's parameters for `s`: element size from the scene when not

@@ -59,10 +59,12 @@ TEST(SolverWorker, PauseStepAndRestart) {
   worker.wait_idle();
   EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 2);
   // A restart while paused goes back to B = E and stays paused: no shot
-  // made, the history empty, every vertex at its emission.
+  // made, the history empty, every vertex at its emission, a new run.
+  const std::uint64_t run_before = worker.latest()->run;
   worker.restart();
   worker.wait_idle();
   const auto restarted = worker.latest();
+  EXPECT_EQ(restarted->run, run_before + 1);
   EXPECT_EQ(restarted->solution->stats.shots, 0u);
   EXPECT_TRUE(restarted->history.empty());
   EXPECT_FALSE(restarted->running);
@@ -74,6 +76,23 @@ TEST(SolverWorker, PauseStepAndRestart) {
   worker.wait_idle();
   EXPECT_EQ(worker.latest()->solution->stats.shots, 1u);
   EXPECT_EQ(worker.latest()->mesh_version, 1u);
+}
+
+// A run that runs out of power to shoot (nothing reflects) ends converged,
+// with one history point per shot made and none for the step that found
+// nothing left.
+TEST(SolverWorker, ARunThatRunsOutRecordsOnlyTheShotsMade) {
+  scene s = cornell();
+  for (material& m : s.materials) m.rho = rgb(0.0);
+  solver_settings settings = coarse(0.0);
+  solver_worker worker;
+  worker.load(std::move(s), settings);
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ASSERT_TRUE(view->solution);
+  EXPECT_TRUE(view->converged);
+  EXPECT_GT(view->solution->stats.shots, 0u);
+  EXPECT_EQ(view->history.size(), view->solution->stats.shots);
 }
 
 // With adaptive meshing the published mesh is the refined one, and the

@@ -2,6 +2,7 @@
 // time; idle once all have run; tasks not started are dropped on exit.
 #include <atomic>
 #include <chrono>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -30,6 +31,15 @@ TEST(BackgroundWorker, RunsTasksOneAtATimeInOrder) {
   ASSERT_EQ(order.size(), 20u);
   for (int i = 0; i < 20; ++i) EXPECT_EQ(order[std::size_t(i)], i);
   EXPECT_EQ(most.load(), 1);
+}
+
+TEST(BackgroundWorker, AFailingTaskDoesNotStopTheOthers) {
+  std::atomic<int> ran{0};
+  background_worker jobs;
+  jobs.post([] { throw std::runtime_error("out of memory, say"); });
+  jobs.post([&] { ++ran; });
+  jobs.wait_idle();
+  EXPECT_EQ(ran.load(), 1);
 }
 
 TEST(BackgroundWorker, DestructionDropsTasksNotStarted) {

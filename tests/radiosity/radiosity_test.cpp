@@ -449,7 +449,6 @@ TEST(RadiosityHardCases, NearlyWhiteFurnaceStaysStableWithTheHemicube) {
   hp.form_factors.hemicube_resolution = 64;
   auto state = make_radiosity_state(s, mesh, hp);
   stop_criterion stop;
-  stop.unshot_fraction = 0.0;
   stop.max_shots = 2000;
   run_radiosity(*state, stop, [](const radiosity_state&) {});
   expect_sane(*state);
