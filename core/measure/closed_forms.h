@@ -1,4 +1,4 @@
-// Closed-form configuration factors (docs/accuracy.md, sections
+// Closed-form configuration factors (docs/accuracy-and-closed-forms.md, sections
 // 1-4), written independently of the form-factor code they check: the tests
 // and the benchmarks measure against them.
 #pragma once

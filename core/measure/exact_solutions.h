@@ -13,7 +13,7 @@
 
 namespace bounce {
 
-// The closed forms (docs/accuracy.md) that a scene's solution is compared with.
+// The closed forms (docs/accuracy-and-closed-forms.md) that a scene's solution is compared with.
 enum class exact_kind {
   none,              // no closed form: compare pictures with a path-traced reference
   furnace,           // B = E / (1 - rho) everywhere

@@ -252,7 +252,7 @@ TEST(RayTracedStills, CornellRadiosityAgreesWithThePathTracer) {
   // The converged radiosity solution (Gouraud view) against the path
   // tracer at 256 samples per pixel, emitters left out, 4x downsampled:
   // relative RMSE measured 12.7% / 7.2% / 4.4% at 100 / 60 / 30 mm
-  // elements (docs/accuracy.md); the path tracer's own noise here is about 2%.
+  // elements (docs/accuracy-and-closed-forms.md); the path tracer's own noise here is about 2%.
   scratch_dir dir;
   ASSERT_EQ(run("trace --integrator path --spp 256 --size 64x64 --pfm " + dir.path("path.pfm") + " --out " +
                 dir.path("a.png")),

@@ -1,4 +1,4 @@
-// Form factors against the closed forms of docs/accuracy.md.
+// Form factors against the closed forms of docs/accuracy-and-closed-forms.md.
 #include <cmath>
 #include <numbers>
 

@@ -1,4 +1,4 @@
-// The solvers against exact answers (docs/accuracy.md, sections 5-7), each other,
+// The solvers against exact answers (docs/accuracy-and-closed-forms.md, sections 5-7), each other,
 // and the hard numerical cases.
 #include <cmath>
 #include <map>
@@ -116,7 +116,7 @@ TEST(Radiosity, SphereInteriorConvergesWithRefinement) {
     surf.geometry = q;
     s.surfaces.push_back(surf);
   }
-  // Measured (docs/accuracy.md): worst 11.2%, 7.5%, 2.6%, 1.2% at max edge 0.8, 0.5,
+  // Measured (docs/accuracy-and-closed-forms.md): worst 11.2%, 7.5%, 2.6%, 1.2% at max edge 0.8, 0.5,
   // 0.35, 0.25; the test runs the two coarse levels.
   double previous = 1.0;
   for (double max_edge : {0.8, 0.5}) {
@@ -404,7 +404,7 @@ TEST(RadiosityHardCases, PerpendicularSquaresSharingAnEdge) {
       area += context.vertex_areas[v];
     }
   const double f = sum / area / 0.5;
-  // Stated in docs/accuracy.md: within 0.2% at 0.05 elements.
+  // Stated in docs/accuracy-and-closed-forms.md: within 0.2% at 0.05 elements.
   EXPECT_NEAR(f / 0.200044, 1.0, 2e-3);
 }
 

@@ -1,4 +1,4 @@
-// Ray queries and specular optics (docs/accuracy.md, section 8).
+// Ray queries and specular optics (docs/accuracy-and-closed-forms.md, section 8).
 #include <cmath>
 #include <numbers>
 
