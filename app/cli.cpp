@@ -200,6 +200,16 @@ std::string apply_camera_options(const camera_options& options, camera& view) {
 }
 
 void add_solver_options(CLI::App& command, solver_settings& o) {
+  std::map<std::string, solver_method> solvers;
+  for (const auto& m : solver_method_names()) solvers.emplace(std::string(m.name), m.method);
+  command.add_option("--solver", o.method, "radiosity solver")
+      ->transform(CLI::CheckedTransformer(solvers, CLI::ignore_case))
+      ->default_str(std::string(name_of(o.method)));
+  command
+      .add_option("--link-tolerance", o.link_tolerance,
+                  "hierarchical: power a link may carry unrefined, as a fraction of the emitted power")
+      ->check(number_in(0.0, 1.0, true))
+      ->capture_default_str();
   std::map<std::string, form_factor_method> methods;
   for (const auto& m : form_factor_method_names()) methods.emplace(std::string(m.name), m.method);
   command.add_option("--method", o.form_factors.method, "form-factor method")
@@ -248,9 +258,9 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
 }
 
 std::span<const char* const> solver_option_names() {
-  static constexpr const char* names[] = {"--method",   "--max-edge",   "--until",     "--max-shots",
-                                          "--time",     "--patch-edge", "--full-rays", "--rays",
-                                          "--hemicube", "--adaptive",   "--tolerance", "--min-edge"};
+  static constexpr const char* names[] = {"--solver",    "--link-tolerance", "--method",     "--max-edge",  "--until",
+                                          "--max-shots", "--time",           "--patch-edge", "--full-rays", "--rays",
+                                          "--hemicube",  "--adaptive",       "--tolerance",  "--min-edge"};
   return names;
 }
 
@@ -261,7 +271,18 @@ std::string given_options(const CLI::App& command, std::span<const char* const> 
   return list;
 }
 
-std::string check_solver_options(const CLI::App& command, const solver_settings& settings) {
+std::string check_solver_options(const CLI::App& command, solver_settings& settings) {
+  // Options of the progressive solver choose it, unless the hierarchical
+  // one was asked for by name: then they would be ignored.
+  static constexpr const char* progressive_only[] = {"--method",   "--patch-edge", "--full-rays", "--rays",
+                                                     "--hemicube", "--adaptive",   "--tolerance", "--min-edge"};
+  if (const std::string given = given_options(command, progressive_only); !given.empty()) {
+    if (command.count("--solver") && settings.method == solver_method::hierarchical)
+      return given + (given.find(',') == std::string::npos ? " applies" : " apply") + " to --solver progressive only";
+    settings.method = solver_method::progressive;
+  }
+  if (settings.method != solver_method::hierarchical && command.count("--link-tolerance"))
+    return "--link-tolerance applies to --solver hierarchical only";
   const bool hemicube = settings.form_factors.method == form_factor_method::hemicube;
   if (hemicube && command.count("--rays")) return "--rays applies to --method raycast only";
   if (hemicube && command.count("--full-rays")) return "--full-rays applies to --method raycast only";
@@ -399,11 +420,19 @@ int run_cli(int argc, char** argv) {
     std::cerr << "error: " << message << "\n";
     return exit_usage;
   };
-  for (const solving_command& c : commands)
+  for (solving_command& c : commands)
     if (c.app->parsed())
       if (std::string e = check_solver_options(*c.app, c.solver); !e.empty()) return usage_error(e);
   if (trace->parsed())
     if (std::string e = check_trace_options(*trace, trace_extra); !e.empty()) return usage_error(e);
+  if (solve->parsed() && (solve_extra.reference || solve_extra.ray_baseline)) {
+    // Both measure the progressive solver (against the matrix solution of
+    // its own system, or Embree's raw rate on its rays).
+    if (solve->count("--solver") && commands[3].solver.method == solver_method::hierarchical)
+      return usage_error(std::string(solve_extra.reference ? "--reference" : "--ray-baseline") +
+                         " applies to --solver progressive only");
+    commands[3].solver.method = solver_method::progressive;
+  }
   if (solve->parsed() && solve_extra.ray_baseline &&
       commands[3].solver.form_factors.method != form_factor_method::raycast)
     return usage_error("--ray-baseline applies to --method raycast only (the hemicube casts no shadow rays)");

@@ -51,7 +51,7 @@ CLI::Validator number_in(double lo, double hi, bool lo_open = false, bool hi_ope
 
 // Solver options that the chosen form-factor method ignores; an error
 // message or an empty string.
-std::string check_solver_options(const CLI::App& command, const solver_settings& settings);
+std::string check_solver_options(const CLI::App& command, solver_settings& settings);
 
 // Parses "x,y,z" and "WxH"; on failure returns nullopt.
 std::optional<vec3> parse_vec3(const std::string& text);

@@ -52,9 +52,15 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     const auto now = clock_type::now();
     const double dt = std::chrono::duration<double>(now - last_print).count();
     if (dt < 1.0) return;
-    std::printf("shots %8llu  unshot %9.5f%%  %8.0f shots/s  %7.2f Mrays/s\n",
-                static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
-                double(st.stats.shots - shots_then) / dt, double(st.stats.rays - rays_then) / dt * 1e-6);
+    if (st.hierarchy)
+      std::printf("steps %6llu  residual %9.5f%%  links %10llu  tolerance %.1e%s\n",
+                  static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
+                  static_cast<unsigned long long>(st.stats.links), st.stats.link_tolerance,
+                  st.stats.links_final ? "" : " (refining)");
+    else
+      std::printf("shots %8llu  unshot %9.5f%%  %8.0f shots/s  %7.2f Mrays/s\n",
+                  static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
+                  double(st.stats.shots - shots_then) / dt, double(st.stats.rays - rays_then) / dt * 1e-6);
     std::fflush(stdout);
     last_print = now;
     shots_then = st.stats.shots;
@@ -74,10 +80,22 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
   if (solver.adaptive.enabled)
     std::printf("adaptive mesh: %zu elements, %zu vertices (%zu elements before refinement while solving)\n",
                 solved.element_count(), solved.vertex_count(), mesh.element_count());
-  std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
-              static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
-              static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
-              balance_error(pb));
+  if (state->hierarchy) {
+    const hierarchical_solver& h = *state->hierarchy;
+    std::printf(
+        "done: hierarchical, %llu steps, residual %.6f%%, %.3f s, %zu links (%.1f MiB) at tolerance %.1e, "
+        "%llu rays, %zu tree nodes%s\n",
+        static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds, h.links.size(),
+        double(h.links.size() * sizeof(hierarchy_link)) / (1 << 20), h.progress.tolerance,
+        static_cast<unsigned long long>(st.rays), h.tree.nodes.size(),
+        h.progress.closed ? ", closed scene: form factors normalised" : "");
+    if (!h.progress.warning.empty()) std::fprintf(stderr, "warning: %s\n", h.progress.warning.c_str());
+  } else {
+    std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
+                static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
+                static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
+                balance_error(pb));
+  }
 
   nlohmann::json stats = solver_stats_json(s, solver, mesh, *state, mesh_seconds);
 

@@ -26,9 +26,9 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                       {"elements_after", pass.elements_after},
                       {"new_vertices", pass.new_vertices},
                       {"seconds", pass.seconds}});
-  return {
+  nlohmann::json out = {
       {"scene", s.source},
-      {"method", name_of(settings.form_factors.method)},
+      {"solver", name_of(state.hierarchy ? solver_method::hierarchical : solver_method::progressive)},
       {"max_edge", solved.max_edge},
       {"elements", solved.element_count()},
       {"elements_meshed", meshed.element_count()},
@@ -42,14 +42,31 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
       {"unshot_fraction", st.unshot_fraction},
       {"seconds", st.seconds},
       {"rays", st.rays},
-      {"power_balance_error", balance_error(pb)},
-      {"power",
-       {{"emitted", to_json(pb.emitted)},
-        {"received", to_json(pb.received)},
-        {"shot", to_json(pb.shot)},
-        {"unshot", to_json(pb.unshot)},
-        {"refined", to_json(pb.refined)}}},
   };
+  if (state.hierarchy) {
+    // The residual stands for the unshot power: what one more iteration would still move.
+    const hierarchical_solver& h = *state.hierarchy;
+    out["hierarchical"] = {{"links", h.links.size()},
+                           {"link_bytes", h.links.size() * sizeof(hierarchy_link)},
+                           {"link_tolerance", h.progress.tolerance},
+                           {"links_final", h.progress.links_final},
+                           {"refinements", h.progress.refinements},
+                           {"operator_applications", h.progress.operator_applications},
+                           {"tree_nodes", h.tree.nodes.size()},
+                           {"closed_scene", h.progress.closed},
+                           {"final_gather_evaluations", h.progress.gather_evaluations},
+                           {"warning", h.progress.warning}};
+    out["power"] = {{"emitted", to_json(pb.emitted)}};
+    return out;
+  }
+  out["method"] = name_of(settings.form_factors.method);
+  out["power_balance_error"] = balance_error(pb);
+  out["power"] = {{"emitted", to_json(pb.emitted)},
+                  {"received", to_json(pb.received)},
+                  {"shot", to_json(pb.shot)},
+                  {"unshot", to_json(pb.unshot)},
+                  {"refined", to_json(pb.refined)}};
+  return out;
 }
 
 void warn_about_mesh(const scene& s, const patch_mesh& mesh) {

@@ -108,12 +108,62 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     state->patch_elements[mesh.element_patches[e]].push_back(int(e));
   state->patch_log.assign(mesh.patch_count(), -1);
+  if (params.method == solver_method::hierarchical)
+    state->hierarchy = make_hierarchical_solver(s, mesh, state->form_factors, params.hierarchical);
   restart_radiosity(*state);
   return state;
 }
 
+namespace {
+
+// The hierarchical solution at the vertices, its residual as the unshot
+// radiosity of the elements, and its progress as statistics.
+void publish_hierarchical(radiosity_state& state) {
+  const hierarchical_solver& h = *state.hierarchy;
+  const patch_mesh& mesh = *state.mesh;
+  // Once a tolerance is solved (the residual below the point where links
+  // are refined), the final gather: each element's light from the links of
+  // it and its ancestors, the kernel evaluated at the element itself. In
+  // between, the element solution as it stands.
+  if (h.residual_fraction <= h.params.refine_below && final_gather(*state.hierarchy)) {
+    std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
+    for (std::size_t e = 0; e < b.size(); ++e) {
+      b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
+      d[e] = h.lamp[e] + h.gathered_direct[e];
+    }
+    state.radiosity = element_to_vertex(mesh, b);
+    state.direct = element_to_vertex(mesh, d);
+  } else {
+    state.radiosity = element_to_vertex(mesh, h.radiosity);
+    state.direct = element_to_vertex(mesh, h.direct);
+  }
+  state.unshot = h.residual;
+  state.stats.unshot_fraction = h.residual_fraction;
+  // A step of the hierarchical solver (a block of iterations, or links
+  // made or refined) counts as one shot: --max-shots and the frames
+  // written during a solve count steps.
+  state.stats.shots = h.progress.steps;
+  state.stats.refinements = std::uint64_t(std::max(0, h.progress.refinements - 1));
+  state.stats.rays = h.progress.rays;
+  state.stats.links = h.links.size();
+  state.stats.link_tolerance = h.progress.tolerance;
+  state.stats.links_final = h.progress.links_final;
+  state.balance = {};
+  state.balance.emitted = rgb(h.emitted_power / 3.0);
+}
+
+}  // namespace
+
 void restart_radiosity(radiosity_state& state) {
   const patch_mesh& mesh = *state.mesh;
+  if (state.hierarchy) {
+    restart_hierarchical(*state.hierarchy);
+    state.stats = {};
+    publish_hierarchical(state);
+    state.stats.unshot_fraction = 1.0;
+    state.lights_shot = false;  // until the first links have carried the direct light
+    return;
+  }
   state.radiosity = mesh.vertex_emission;
   state.direct.assign(mesh.vertex_count(), rgb(0.0));
   state.unshot.assign(mesh.element_count(), rgb(0.0));
@@ -135,6 +185,13 @@ void restart_radiosity(radiosity_state& state) {
 
 bool step_radiosity(radiosity_state& state) {
   const auto start = std::chrono::steady_clock::now();
+  if (state.hierarchy) {
+    if (!step_hierarchical(*state.hierarchy, state.params.hierarchical.refine_below)) return false;
+    publish_hierarchical(state);
+    state.lights_shot = true;
+    state.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
+  }
   if (!state.lights_shot) {
     shoot_point_lights(state);
     ++state.stats.shots;

@@ -25,13 +25,16 @@
 #include "mesh/adaptive.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/form_factor.h"
+#include "radiosity/hierarchical.h"
 #include "radiosity/solver_settings.h"
 
 namespace bounce {
 
 struct radiosity_params {
+  solver_method method = solver_method::progressive;
   form_factor_params form_factors;
-  adaptive_params adaptive;  // a posteriori refinement during shooting (off by default)
+  adaptive_params adaptive;  // a posteriori refinement during shooting (off by default; progressive only)
+  hierarchical_params hierarchical;
 };
 
 // Power bookkeeping, per channel, in the scene's power units (radiosity x
@@ -66,6 +69,12 @@ struct radiosity_stats {
   std::uint64_t rays = 0;
   double seconds = 0.0;          // wall time spent in steps
   double unshot_fraction = 1.0;  // unshot power / emitted power (sum of channels)
+  // Hierarchical solver: links, the oracle's tolerance, and whether it has
+  // reached its final value (the unshot fraction is then the residual at
+  // the final links; before, stopping on it would stop too coarse).
+  std::uint64_t links = 0;
+  double link_tolerance = 0.0;
+  bool links_final = true;
 };
 
 struct radiosity_state {
@@ -89,6 +98,10 @@ struct radiosity_state {
   std::vector<shot_record> shot_log;  // every shooter that has shot (a patch split later keeps its record)
   std::vector<int> patch_log;         // per patch: its entry in shot_log, -1 before its first shot
   adaptive_progress adaptive;
+  // The hierarchical solver (params.method == hierarchical); the vertex
+  // arrays above are then published from its element solution after
+  // every step, and `unshot` holds each element's residual.
+  std::unique_ptr<hierarchical_solver> hierarchy;
 };
 
 // Sets B = E, U = M E, and prepares the form-factor method.
@@ -101,7 +114,9 @@ void restart_radiosity(radiosity_state& state);
 
 // One step: point lights first (all of them, with shadow rays), then one
 // patch shot, or, with adaptive refinement on and due, a refinement pass
-// (state.mesh then changes). Returns false when nothing is left to do.
+// (state.mesh then changes). With the hierarchical solver, one of its
+// steps (hierarchical.h): links made or refined, or a block of
+// iterations. Returns false when nothing is left to do.
 bool step_radiosity(radiosity_state& state);
 
 // Refines the state's mesh (refine_patch_mesh: the marked elements, no

@@ -1,5 +1,7 @@
 #include "radiosity/solver_settings.h"
 
+#include <algorithm>
+
 #include "radiosity/radiosity.h"
 #include "scene/scene_info.h"
 
@@ -9,7 +11,8 @@ bool stop_reached(const radiosity_state& state, const stop_criterion& stop) {
   const radiosity_stats& st = state.stats;
   // Before every emitter has shot, the unshot fraction says little: a dim
   // emitter may not have shot yet.
-  if (stop.unshot_fraction > 0.0 && state.lights_shot && st.unshot_fraction <= stop.unshot_fraction) return true;
+  if (stop.unshot_fraction > 0.0 && state.lights_shot && st.links_final && st.unshot_fraction <= stop.unshot_fraction)
+    return true;
   if (stop.max_shots > 0 && st.shots >= stop.max_shots) return true;
   return stop.seconds > 0.0 && st.seconds >= stop.seconds;
 }
@@ -24,6 +27,13 @@ mesher_params mesher_params_for(const solver_settings& settings, const scene& s)
     p.a_priori_min_edge = settings.adaptive.min_edge > 0.0 ? settings.adaptive.min_edge : default_min_edge(p.max_edge);
     return p;
   }
+  if (settings.method == solver_method::hierarchical) {
+    // The elements are the hierarchy's finest level: links decide where
+    // the solution is resolved, so the elements can be small.
+    p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : hierarchical_max_edge(s);
+    p.patch_edge = 0.0;
+    return p;
+  }
   p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : default_max_edge(s);
   // Patches of about 16 elements shoot by default: on the Cornell box much
   // faster to converge than element shooting, for a small deviation
@@ -34,9 +44,37 @@ mesher_params mesher_params_for(const solver_settings& settings, const scene& s)
 
 radiosity_params radiosity_params_for(const solver_settings& settings) {
   radiosity_params p;
+  p.method = settings.method;
   p.form_factors = settings.form_factors;
   p.adaptive = settings.adaptive;
+  p.hierarchical.tolerance = settings.link_tolerance;
+  // Each tolerance is solved to the run's stopping point, or 2%, before
+  // the links are refined further.
+  p.hierarchical.refine_below = std::max(settings.stop.unshot_fraction, 0.02);
   return p;
+}
+
+namespace {
+constexpr solver_method_name solver_names[] = {
+    {solver_method::hierarchical, "hierarchical"},
+    {solver_method::progressive, "progressive"},
+};
+}  // namespace
+
+std::span<const solver_method_name> solver_method_names() {
+  return solver_names;
+}
+
+std::string_view name_of(solver_method method) {
+  for (const auto& m : solver_names)
+    if (m.method == method) return m.name;
+  return "unknown";
+}
+
+std::optional<solver_method> solver_method_named(std::string_view name) {
+  for (const auto& m : solver_names)
+    if (m.name == name) return m.method;
+  return std::nullopt;
 }
 
 namespace {

@@ -18,6 +18,10 @@ namespace bounce {
 struct radiosity_state;
 struct radiosity_params;
 
+// Which solver runs: hierarchical radiosity with clustering (the default:
+// hierarchical.h) or progressive shooting (radiosity.h), the baseline.
+enum class solver_method { hierarchical, progressive };
+
 // When a run stops. Every limit counts from the solver's (re)start: the
 // shots it has made and the time it has spent shooting (radiosity_stats),
 // so a limit means the same whether the run is driven by `run_radiosity`,
@@ -32,12 +36,16 @@ struct stop_criterion {
 bool stop_reached(const radiosity_state& state, const stop_criterion& stop);
 
 struct solver_settings {
+  solver_method method = solver_method::hierarchical;
   // Mesh, in scene units, as asked for; mesher_params_for resolves the
   // defaults that depend on the scene.
   double max_edge = 0.0;     // longest element edge; 0: the scene's default
   double patch_edge = -1.0;  // shooting patches (substructuring); 0: elements shoot; < 0: the default
   form_factor_params form_factors;
-  adaptive_params adaptive;           // adaptive.min_edge 0: the default for the element size
+  adaptive_params adaptive;  // adaptive.min_edge 0: the default for the element size
+  // Hierarchical: the oracle's final tolerance, a fraction of the emitted
+  // power that one link may carry unrefined (the accuracy knob).
+  double link_tolerance = 1e-5;
   stop_criterion stop{0.01, 0, 0.0};  // 1% of the power left unshot; no shot or time limit
 };
 
@@ -48,6 +56,15 @@ mesher_params mesher_params_for(const solver_settings& settings, const scene& s)
 
 // The solver's parameters (form factors and a posteriori refinement).
 radiosity_params radiosity_params_for(const solver_settings& settings);
+
+// Names of the solvers, as the command line and the panel show them.
+struct solver_method_name {
+  solver_method method;
+  std::string_view name;
+};
+std::span<const solver_method_name> solver_method_names();
+std::string_view name_of(solver_method method);
+std::optional<solver_method> solver_method_named(std::string_view name);
 
 // Names of the form-factor methods, as the command line and the panel show them.
 struct form_factor_method_name {

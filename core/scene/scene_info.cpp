@@ -15,6 +15,10 @@ double default_max_edge(const scene& s) {
   return diagonal > 0.0 ? diagonal / 24.0 : 1.0;
 }
 
+double hierarchical_max_edge(const scene& s) {
+  return default_max_edge(s) * 24.0 / 64.0;
+}
+
 std::string summarize_scene(const scene& s, double max_edge, scene_summary& out) {
   out = {};
   out.max_edge = max_edge;

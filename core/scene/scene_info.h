@@ -13,6 +13,11 @@ namespace bounce {
 // box diagonal (about 40 mm in the Cornell box).
 double default_max_edge(const scene& s);
 
+// The hierarchical solver's finest element size when none is asked for:
+// 1/64 of the diagonal (15 mm in the Cornell box); links, not elements,
+// decide where the solution is resolved.
+double hierarchical_max_edge(const scene& s);
+
 struct scene_summary {
   std::size_t surfaces = 0;
   std::size_t polygon_meshes = 0, spheres = 0, quadrics = 0, bezier_surfaces = 0, bspline_surfaces = 0;

@@ -74,24 +74,34 @@ TEST(Cli, SolvingCommandsShareOptions) {
 // offers it writes one; the window has no statistics file to write.
 TEST(Cli, StatsIsWrittenByEveryCommandThatOffersIt) {
   scratch_dir dir;
-  const std::string fast = " --max-edge 150 --until 0.05";
-  for (const char* command : {"solve", "render", "trace"}) {
-    const std::string stats = dir.path(std::string(command) + ".json");
-    const std::string out =
-        std::string(command) == "solve" ? "" : " --size 16x16 --out " + dir.path(std::string(command) + ".png");
-    run_result r = run(std::string(command) + fast + out + " --stats " + stats);
-    ASSERT_EQ(r.code, 0) << command << ": " << r.err;
-    nlohmann::json j = nlohmann::json::parse(slurp(stats), nullptr, false);
-    ASSERT_FALSE(j.is_discarded()) << command << ": " << slurp(stats);
-    const nlohmann::json& radiosity = std::string(command) == "trace" ? j["radiosity"] : j;
-    EXPECT_GT(radiosity["shots"].get<int>(), 0) << command;
-    EXPECT_GT(radiosity["elements"].get<int>(), 0) << command;
-    EXPECT_LE(radiosity["unshot_fraction"].get<double>(), 0.05) << command;
-    EXPECT_LT(radiosity["power_balance_error"].get<double>(), 1e-9) << command;
-    if (std::string(command) == "trace") {
-      EXPECT_EQ(j["trace"]["width"].get<int>(), 16);
+  for (const char* solver : {"hierarchical", "progressive"})
+    for (const char* command : {"solve", "render", "trace"}) {
+      const std::string fast = std::string(" --max-edge 150 --until 0.05 --solver ") + solver;
+      const std::string stats = dir.path(std::string(command) + ".json");
+      const std::string out =
+          std::string(command) == "solve" ? "" : " --size 16x16 --out " + dir.path(std::string(command) + ".png");
+      run_result r = run(std::string(command) + fast + out + " --stats " + stats);
+      ASSERT_EQ(r.code, 0) << command << ": " << r.err;
+      nlohmann::json j = nlohmann::json::parse(slurp(stats), nullptr, false);
+      ASSERT_FALSE(j.is_discarded()) << command << ": " << slurp(stats);
+      const nlohmann::json& radiosity = std::string(command) == "trace" ? j["radiosity"] : j;
+      EXPECT_GT(radiosity["shots"].get<int>(), 0) << command;
+      EXPECT_GT(radiosity["elements"].get<int>(), 0) << command;
+      EXPECT_LE(radiosity["unshot_fraction"].get<double>(), 0.05) << command;
+      EXPECT_EQ(radiosity["solver"].get<std::string>(), solver) << command;
+      if (std::string(solver) == "progressive") {
+        EXPECT_LT(radiosity["power_balance_error"].get<double>(), 1e-9) << command;
+      } else {
+        EXPECT_GT(radiosity["hierarchical"]["links"].get<int>(), 0) << command;
+        EXPECT_EQ(radiosity["hierarchical"]["link_bytes"].get<int>(),
+                  16 * radiosity["hierarchical"]["links"].get<int>())
+            << command;
+        EXPECT_TRUE(radiosity["hierarchical"]["links_final"].get<bool>()) << command;
+      }
+      if (std::string(command) == "trace") {
+        EXPECT_EQ(j["trace"]["width"].get<int>(), 16);
+      }
     }
-  }
   EXPECT_EQ(run("view --stats " + dir.path("view.json")).code, 2);
 }
 
@@ -375,21 +385,31 @@ TEST(Cli, CompareRefusesNonFinitePixelsAndOversizedDownsampling) {
 }
 
 // The quick suite as a smoke test (its times are not checked): every
-// output is written, parses, and holds every scene and method with a
-// measured, finite error.
+// output is written, parses, and holds every scene, solver and method with
+// a measured, finite error; --threads reaches every run.
 TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
   scratch_dir dir;
-  run_result r = run("bench --suite quick --out " + dir.path("bench"));
+  run_result r = run("bench --suite quick --threads 1 --out " + dir.path("bench"));
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   const nlohmann::json results = nlohmann::json::parse(slurp(dir.path("bench/bench.json")));
-  std::set<std::string> methods, scenes;
+  std::set<std::string> methods, scenes, solvers;
   std::size_t points = 0;
   for (const auto& c : results["cases"]) {
     EXPECT_EQ(c["error"], "") << c.dump();
     EXPECT_GT(c["peak_mib"].get<double>(), 1.0);
     EXPECT_GT(c["cpu_seconds"].get<double>(), 0.0);
+    EXPECT_EQ(c["threads"], 1) << c["scene"];  // not the machine's default, where it has 2 cores or more
     scenes.insert(c["scene"].get<std::string>());
+    solvers.insert(c["solver"].get<std::string>());
     for (const auto& curve : c["curves"]) {
+      // Curves name their solver: the hierarchical and progressive ones are told apart.
+      const std::string label = curve["label"].get<std::string>();
+      if (c["solver"] == "hierarchical" || c["solver"] == "progressive") {
+        EXPECT_EQ(label.rfind(c["solver"].get<std::string>(), 0), 0u) << label;
+      }
+      if (c["solver"] == "hierarchical") {
+        EXPECT_GT(c["links"].get<std::uint64_t>(), 0u);
+      }
       methods.insert(curve["method"].get<std::string>());
       ASSERT_FALSE(curve["points"].empty()) << curve["label"];
       for (const auto& p : curve["points"]) {
@@ -403,8 +423,9 @@ TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
       }
     }
   }
-  for (const char* m : {"raycast", "hemicube", "reference-lu", "gauss-seidel", "path", "two-pass"})
+  for (const char* m : {"raycast", "hemicube", "hierarchical", "reference-lu", "gauss-seidel", "path", "two-pass"})
     EXPECT_TRUE(methods.count(m)) << m;
+  for (const char* s : {"hierarchical", "progressive", "reference", "path"}) EXPECT_TRUE(solvers.count(s)) << s;
   for (const char* s :
        {"cornell", "occluders", "furnace", "furnace-0.99", "sphere", "squares-perpendicular", "squares-parallel"}) {
     EXPECT_TRUE(scenes.count(s)) << s;

@@ -77,7 +77,7 @@ constexpr double max_mean = 1.0, max_p999 = 24.0;
 // stopping point, and compares it with the named golden.
 void expect_cornell_matches(const std::string& stop, const std::string& golden) {
   scratch_dir dir;
-  ASSERT_EQ(run("render --size 128x128 --max-edge 60 " + stop + " --out " + dir.path("a.png")), 0);
+  ASSERT_EQ(run("render --size 128x128 --max-edge 60 --solver progressive " + stop + " --out " + dir.path("a.png")), 0);
   expect_matches_golden(dir.path("a.png"), golden, max_mean, max_p999);
 }
 
@@ -89,6 +89,12 @@ TEST(HeadlessImages, CornellBoxAfterTenShots) {
 }
 TEST(HeadlessImages, CornellBoxConverged) {
   expect_cornell_matches("--until 0.001", "cornell_converged.png");
+}
+// The default solver, hierarchical, at its default element size.
+TEST(HeadlessImages, CornellBoxHierarchical) {
+  scratch_dir dir;
+  ASSERT_EQ(run("render --size 128x128 --until 0.001 --out " + dir.path("a.png")), 0);
+  expect_matches_golden(dir.path("a.png"), "cornell_hierarchical.png", max_mean, max_p999);
 }
 
 TEST(HeadlessImages, EmitterPixelsShowTheirRadiance) {
@@ -299,8 +305,8 @@ TEST(RayTracedStills, CoplanarLightAgreesWithThePathTracerAsTheEmbeddedBoxDoes) 
 
 TEST(HeadlessImages, FramesAreWrittenDuringTheSolve) {
   scratch_dir dir;
-  ASSERT_EQ(run("render --size 64x64 --max-edge 100 --max-shots 6 --frame-every 2 --frames " + dir.path("frames") +
-                " --out " + dir.path("a.png")),
+  ASSERT_EQ(run("render --size 64x64 --max-edge 100 --solver progressive --max-shots 6 --frame-every 2 --frames " +
+                dir.path("frames") + " --out " + dir.path("a.png")),
             0);
   for (const char* name : {"frame_000002.png", "frame_000004.png", "frame_000006.png"})
     EXPECT_TRUE(std::filesystem::exists(dir.path("frames/") + name)) << name;

@@ -21,8 +21,10 @@ scene cornell() {
   return s;
 }
 
+// The progressive solver: one shot per step, unshot falling.
 solver_settings coarse(double until) {
   solver_settings o;
+  o.method = solver_method::progressive;
   o.max_edge = 120;
   o.stop.unshot_fraction = until;
   return o;
@@ -42,6 +44,24 @@ TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
   EXPECT_EQ(view->history.size(), view->solution->stats.shots);
   for (std::size_t i = 1; i < view->history.size(); ++i)
     EXPECT_LE(view->history[i].unshot_fraction, view->history[i - 1].unshot_fraction + 1e-12);
+  EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
+}
+
+TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
+  solver_worker worker;
+  solver_settings settings;  // the default solver
+  settings.max_edge = 60;
+  settings.stop.unshot_fraction = 0.01;
+  ASSERT_EQ(settings.method, solver_method::hierarchical);
+  worker.load(cornell(), settings);
+  worker.wait_idle();
+  auto view = worker.latest();
+  ASSERT_TRUE(view->solution);
+  EXPECT_TRUE(view->converged);
+  EXPECT_TRUE(view->solution->stats.links_final);
+  EXPECT_GT(view->solution->stats.links, 0u);
+  EXPECT_LE(view->solution->stats.unshot_fraction, 0.01);
+  EXPECT_EQ(view->history.size(), view->solution->stats.shots);  // one point per step
   EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
 }
 

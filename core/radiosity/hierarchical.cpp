@@ -1,0 +1,750 @@
+#include "radiosity/hierarchical.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numbers>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <Eigen/Core>
+#include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Sparse>
+
+#include "base/check.h"
+#include "base/parallel.h"
+#include "radiosity/occlusion.h"
+#include "radiosity/point_lights.h"
+
+namespace bounce {
+namespace {
+
+double channel_sum_of(const rgb& c) {
+  return c.r + c.g + c.b;
+}
+
+double channel_max(const rgb& c) {
+  return std::max(c.r, std::max(c.g, c.b));
+}
+
+std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+double uniform(std::uint64_t& state) {
+  state = mix(state);
+  return double(state >> 11) * 0x1.0p-53;
+}
+
+// Working arrays of one operator application.
+struct transport_buffers {
+  std::vector<rgb> node_b;
+  std::vector<rgb> gathered;             // oriented nodes: irradiance gathered by their own links, then pushed
+  std::vector<std::array<rgb, 6>> bins;  // clusters: irradiance per unit area facing +x, -x, ...
+};
+
+transport_buffers& buffers_for(const hierarchical_solver& solver) {
+  // One set per solver thread: apply_transport is called by one thread at a time per solver.
+  static thread_local transport_buffers buffers;
+  buffers.node_b.resize(solver.tree.nodes.size());
+  buffers.gathered.resize(solver.tree.nodes.size());
+  buffers.bins.resize(
+      std::size_t(std::count_if(solver.cube_slot.begin(), solver.cube_slot.end(), [](int s) { return s >= 0; })));
+  return buffers;
+}
+
+// Irradiance on an oriented surface of normal n from six direction bins.
+rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
+  rgb sum(0.0);
+  for (int k = 0; k < 3; ++k) sum += n[k] >= 0.0 ? n[k] * bins[2 * k] : -n[k] * bins[2 * k + 1];
+  return sum;
+}
+
+// Pull: element radiosities up the tree as area-weighted means, level by level.
+void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& node_b) {
+  const cluster_tree& tree = solver.tree;
+  for (int level = int(tree.levels.size()) - 2; level >= 0; --level) {
+    const std::size_t begin = std::size_t(tree.levels[level]), end = std::size_t(tree.levels[level + 1]);
+    for_each_block(solver.params.parallel, end - begin, 4096, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = begin + b; i < begin + e; ++i) {
+        const cluster_node& node = tree.nodes[i];
+        if (node.leaf()) {
+          node_b[i] = x[node.element];
+          continue;
+        }
+        rgb sum(0.0);
+        for (int c = node.first_child; c < node.first_child + node.child_count; ++c)
+          sum += node_b[c] * tree.nodes[c].area;
+        node_b[i] = node.area > 0.0 ? sum / node.area : rgb(0.0);
+      }
+    });
+  }
+}
+
+// Gather over the links into their receivers, then push the irradiance
+// down to the elements: out[e] = irradiance on element e.
+void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
+  const cluster_tree& tree = solver.tree;
+  transport_buffers& buf = buffers_for(solver);
+  pull(solver, x, buf.node_b);
+  const std::size_t n = tree.nodes.size();
+  for_each_block(solver.params.parallel, n, 1024, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const cluster_node& node = tree.nodes[i];
+      const int slot = solver.cube_slot[i];
+      rgb sum(0.0);
+      std::array<rgb, 6> bins{};
+      for (std::size_t l = solver.link_offsets[i]; l < solver.link_offsets[i + 1]; ++l) {
+        const hierarchy_link& link = solver.links[l];
+        const rgb value = double(link.factor) * double(link.visibility) * buf.node_b[link.source];
+        if (slot < 0) {
+          sum += value;
+          continue;
+        }
+        const vec3 d = glm::normalize(tree.nodes[link.source].centroid - node.centroid);
+        for (int k = 0; k < 3; ++k) bins[2 * k + (d[k] >= 0.0 ? 0 : 1)] += std::abs(d[k]) * value;
+      }
+      if (slot < 0)
+        buf.gathered[i] = sum;
+      else
+        buf.bins[slot] = bins;
+    }
+  });
+  // Push, level by level: a cluster's bins accumulate down to the first
+  // oriented node, which turns them into irradiance on its normal.
+  for (std::size_t level = 1; level + 1 < tree.levels.size(); ++level) {
+    const std::size_t begin = std::size_t(tree.levels[level]), end = std::size_t(tree.levels[level + 1]);
+    for_each_block(solver.params.parallel, end - begin, 4096, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = begin + b; i < begin + e; ++i) {
+        const int parent = tree.nodes[i].parent;
+        const int slot = solver.cube_slot[i], parent_slot = solver.cube_slot[parent];
+        if (slot >= 0) {
+          for (int k = 0; k < 6; ++k) buf.bins[slot][k] += buf.bins[parent_slot][k];
+        } else {
+          buf.gathered[i] +=
+              parent_slot >= 0 ? from_bins(buf.bins[parent_slot], tree.nodes[i].normal) : buf.gathered[parent];
+        }
+      }
+    });
+  }
+  out.resize(solver.mesh->element_count());
+  for_each_block(solver.params.parallel, out.size(), 4096, [&](std::size_t b, std::size_t e) {
+    for (std::size_t el = b; el < e; ++el) out[el] = buf.gathered[tree.leaf_of_element[el]];
+  });
+  // A single-element mesh: the root is the leaf, and oriented.
+}
+
+// ---- link refinement ----
+
+struct link_estimate {
+  double factor = 0.0;  // what the link would carry per unit source radiosity
+  double bound = 0.0;   // the form factor the oracle charges it with
+  bool none = false;    // the two cannot exchange light (they face away)
+};
+
+// Whether every point of box [lo, hi] lies at or behind the plane of
+// normal n through the nearest point of `other` (lo2..hi2) along n.
+bool behind(const vec3& n, const vec3& lo, const vec3& hi, const vec3& other_lo, const vec3& other_hi, double slack) {
+  double front = 0.0, back = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    front += n[k] * (n[k] >= 0.0 ? hi[k] : lo[k]);             // the box's farthest point along n
+    back += n[k] * (n[k] >= 0.0 ? other_lo[k] : other_hi[k]);  // the other's lowest point along n
+  }
+  return front <= back + slack;
+}
+
+struct refine_context {
+  hierarchical_solver& solver;
+  const std::vector<rgb>& node_b;
+  double tolerance;  // absolute: power units
+  tbb::enumerable_thread_specific<std::vector<hierarchy_link>>& out;
+  std::atomic<std::size_t>& count;
+  std::atomic<std::uint64_t>& rays;
+  std::atomic<bool>& limit_hit;
+};
+
+link_estimate estimate(const hierarchical_solver& solver, int i, int j) {
+  const cluster_node& r = solver.tree.nodes[i];
+  const cluster_node& s = solver.tree.nodes[j];
+  const patch_mesh& mesh = *solver.mesh;
+  link_estimate e;
+  const double slack = 1e-9 * mesh.scene_diagonal;
+  if ((r.oriented && behind(r.normal, s.lo, s.hi, r.lo, r.hi, slack)) ||
+      (s.oriented && behind(s.normal, r.lo, r.hi, s.lo, s.hi, slack))) {
+    e.none = true;
+    return e;
+  }
+  if (r.leaf() && s.leaf()) {
+    const glm::ivec3 t = mesh.elements[s.element];
+    const vec3 polygon[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+    e.factor = e.bound = point_polygon_form_factor(r.centroid, r.normal, polygon);
+    e.none = !(e.factor > 0.0);
+    return e;
+  }
+  const vec3 d = s.centroid - r.centroid;
+  const double r2 = glm::dot(d, d);
+  const double distance = std::sqrt(r2);
+  const vec3 dir = distance > 0.0 ? d / distance : vec3(0.0);
+  const double receive = r.oriented ? std::max(0.0, glm::dot(r.normal, dir)) : 1.0;
+  const double send = projected_area(s, -dir);
+  // A disc of projected area A facing the receiver on its axis at distance
+  // r: F = A / (pi r^2 + A), finite as r goes to 0.
+  e.factor = std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
+  // Overlapping bounds: the estimate says nothing; charge the largest
+  // factor. The centroids' cosines can be near 0 where parts of the two
+  // still face each other: charge at least a tenth of the factor without them.
+  const bool close = distance < r.radius() + s.radius();
+  e.bound = close ? 1.0 : std::max(e.factor, 0.1 * s.area / (std::numbers::pi * r2 + s.area));
+  return e;
+}
+
+float visibility(refine_context& ctx, int i, int j, int count) {
+  const hierarchical_solver& solver = ctx.solver;
+  const cluster_node& r = solver.tree.nodes[i];
+  const cluster_node& s = solver.tree.nodes[j];
+  // Leaves are keyed by element, so that the element-level solution casts the same rays.
+  const std::uint64_t key_i = r.leaf() ? std::uint64_t(r.element) : (1ull << 40) + std::uint64_t(i);
+  const std::uint64_t key_j = s.leaf() ? std::uint64_t(s.element) : (1ull << 40) + std::uint64_t(j);
+  std::uint64_t state = mix(solver.params.seed ^ mix(key_i * 0x100000001b3ull ^ mix(key_j)));
+  // Each pair counts by what it would carry (the cosines at both ends):
+  // pairs that face away from each other carry nothing, and would
+  // otherwise count the back of a box as a shadow.
+  double open = 0.0, total = 0.0;
+  int open_rays = 0;
+  for (int k = 0; k < count; ++k) {
+    // Stratified along the first coordinate of both ends.
+    const double u1 = (k + uniform(state)) / count, v1 = uniform(state);
+    const double u2 = (((k * 7 + 3) % count) + uniform(state)) / count, v2 = uniform(state);
+    const surface_point p = sample_node(solver.tree, *solver.mesh, i, u1, v1);
+    const surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
+    const vec3 pq = q.position - p.position;
+    const vec3 from = p.position + p.normal * (glm::dot(pq, p.normal) >= 0.0 ? solver.offset : -solver.offset);
+    const vec3 to = q.position + q.normal * (glm::dot(pq, q.normal) <= 0.0 ? solver.offset : -solver.offset);
+    const double length = glm::length(pq);
+    const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, p.normal)) *
+                                             std::max(0.0, -glm::dot(pq, q.normal)) / (length * length)
+                                       : 0.0;
+    const bool passes = !solver.occlusion->occluded(from, to);
+    open_rays += passes ? 1 : 0;
+    total += weight;
+    open += passes ? weight : 0.0;
+  }
+  ctx.rays += std::uint64_t(count);
+  if (total > 0.0) return float(open / total);
+  return float(open_rays) / float(count);
+}
+
+void refine_pair(refine_context& ctx, int i, int j);
+
+void split_pair(refine_context& ctx, int i, int j) {
+  const cluster_node& r = ctx.solver.tree.nodes[i];
+  const cluster_node& s = ctx.solver.tree.nodes[j];
+  const bool split_receiver = !r.leaf() && (s.leaf() || r.area >= s.area);
+  const cluster_node& split = split_receiver ? r : s;
+  auto body = [&](int c) { split_receiver ? refine_pair(ctx, c, j) : refine_pair(ctx, i, c); };
+  // Large pairs fan out over the threads; small ones stay on this one.
+  if (ctx.solver.params.parallel && r.elements + s.elements > 4096) {
+    tbb::parallel_for(split.first_child, split.first_child + split.child_count, body);
+  } else {
+    for (int c = split.first_child; c < split.first_child + split.child_count; ++c) body(c);
+  }
+}
+
+// The oracle's decision for a pair: split, or keep as one link.
+void refine_pair(refine_context& ctx, int i, int j) {
+  const link_estimate e = estimate(ctx.solver, i, j);
+  if (e.none) return;
+  const cluster_node& r = ctx.solver.tree.nodes[i];
+  const cluster_node& s = ctx.solver.tree.nodes[j];
+  const bool splittable = !(r.leaf() && s.leaf()) && !ctx.limit_hit.load(std::memory_order_relaxed);
+  const double error = e.bound * r.area * channel_max(ctx.node_b[j]);
+  if (splittable && (error > ctx.tolerance)) return split_pair(ctx, i, j);
+  const bool leaves = r.leaf() && s.leaf();
+  const int rays = leaves ? ctx.solver.params.leaf_visibility_rays : ctx.solver.params.visibility_rays;
+  const float v = visibility(ctx, i, j, rays);
+  // Partly visible links must carry less (params.partial_factor).
+  if (splittable && v > 0.0f && v < 1.0f && ctx.solver.params.partial_factor * error > ctx.tolerance)
+    return split_pair(ctx, i, j);
+  // A pair whose estimate is 0 but that is not culled is kept: parts of
+  // it may face each other, and a later refinement (with more light) splits it.
+  if (!(e.factor > 0.0) && leaves) return;
+  ctx.out.local().push_back({i, j, float(e.factor), v});
+  if (ctx.count.fetch_add(1, std::memory_order_relaxed) + 1 >= ctx.solver.params.max_links)
+    ctx.limit_hit.store(true, std::memory_order_relaxed);
+}
+
+// A node with itself: its children with each other, and each with itself.
+// Oriented nodes do not see themselves.
+void refine_self(refine_context& ctx, int i) {
+  const cluster_node& node = ctx.solver.tree.nodes[i];
+  if (node.oriented || node.leaf()) return;
+  auto body = [&](int a) {
+    refine_self(ctx, a);
+    for (int b = node.first_child; b < node.first_child + node.child_count; ++b)
+      if (b != a) refine_pair(ctx, a, b);
+  };
+  if (ctx.solver.params.parallel && node.elements > 4096)
+    tbb::parallel_for(node.first_child, node.first_child + node.child_count, body);
+  else
+    for (int a = node.first_child; a < node.first_child + node.child_count; ++a) body(a);
+}
+
+// Whether sampled rays from the elements all stay inside: a closed scene.
+bool scene_is_closed(const hierarchical_solver& solver) {
+  const patch_mesh& mesh = *solver.mesh;
+  const std::size_t count = mesh.element_count();
+  if (count == 0) return false;
+  const std::size_t stride = std::max<std::size_t>(1, count / 4096);
+  std::atomic<bool> escaped{false};
+  const double far = 4.0 * mesh.scene_diagonal;
+  for_each_block(solver.params.parallel, (count + stride - 1) / stride, 64, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e && !escaped; ++k) {
+      const std::size_t el = k * stride;
+      const cluster_node& leaf = solver.tree.nodes[solver.tree.leaf_of_element[el]];
+      const vec3 n = leaf.normal;
+      const vec3 a = glm::normalize(std::abs(n.x) > 0.9 ? glm::cross(n, vec3(0, 1, 0)) : glm::cross(n, vec3(1, 0, 0)));
+      const vec3 c = glm::cross(n, a);
+      std::uint64_t state = mix(solver.params.seed + el);
+      for (int r = 0; r < 8; ++r) {
+        // Cosine-distributed directions.
+        const double u = (r + uniform(state)) / 8.0, phi = 2.0 * std::numbers::pi * uniform(state);
+        const double s = std::sqrt(u);
+        const vec3 dir = n * std::sqrt(std::max(0.0, 1.0 - u)) + a * (s * std::cos(phi)) + c * (s * std::sin(phi));
+        const vec3 from = leaf.centroid + n * solver.offset;
+        if (!solver.occlusion->occluded(from, from + dir * far)) {
+          escaped = true;
+          break;
+        }
+      }
+    }
+  });
+  return !escaped;
+}
+
+// Sorts the links by receiver and indexes them.
+void index_links(hierarchical_solver& solver) {
+  tbb::parallel_sort(solver.links.begin(), solver.links.end(), [](const hierarchy_link& a, const hierarchy_link& b) {
+    return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
+  });
+  const std::size_t n = solver.tree.nodes.size();
+  solver.link_offsets.assign(n + 1, 0);
+  for (const hierarchy_link& l : solver.links) ++solver.link_offsets[std::size_t(l.receiver) + 1];
+  for (std::size_t i = 0; i < n; ++i) solver.link_offsets[i + 1] += solver.link_offsets[i];
+}
+
+void update_normalizer(hierarchical_solver& solver) {
+  const std::size_t n = solver.mesh->element_count();
+  solver.normalizer.assign(n, 1.0);
+  if (!solver.progress.closed) return;
+  // The form-factor sum of each element: its irradiance when every node has radiosity 1.
+  std::vector<rgb> ones(n, rgb(1.0)), sum;
+  gather_push(solver, ones, sum);
+  for (std::size_t e = 0; e < n; ++e)
+    if (sum[e].r > 0.0) solver.normalizer[e] = 1.0 / sum[e].r;
+}
+
+// E + lamp: what the system's right-hand side is.
+std::vector<rgb> right_hand_side(const hierarchical_solver& solver) {
+  std::vector<rgb> b(solver.emission.size());
+  for (std::size_t e = 0; e < b.size(); ++e) b[e] = solver.emission[e] + solver.lamp[e];
+  return b;
+}
+
+void update_residual(hierarchical_solver& solver) {
+  const patch_mesh& mesh = *solver.mesh;
+  std::vector<rgb> kx;
+  apply_transport(solver, solver.radiosity, kx);
+  ++solver.progress.operator_applications;
+  double power = 0.0;
+  solver.residual.resize(kx.size());
+  for (std::size_t e = 0; e < kx.size(); ++e) {
+    solver.residual[e] = solver.emission[e] + solver.lamp[e] + kx[e] - solver.radiosity[e];
+    const rgb& r = solver.residual[e];
+    power += (std::abs(r.r) + std::abs(r.g) + std::abs(r.b)) * mesh.element_areas[e];
+  }
+  solver.residual_fraction = solver.emitted_power > 0.0 ? power / solver.emitted_power : 0.0;
+}
+
+void update_direct(hierarchical_solver& solver) {
+  apply_transport(solver, solver.emission, solver.direct);
+  ++solver.progress.operator_applications;
+  for (std::size_t e = 0; e < solver.direct.size(); ++e) solver.direct[e] += solver.lamp[e];
+}
+
+}  // namespace
+
+}  // namespace bounce
+
+// ---- BiCGSTAB on I - K, matrix-free (Eigen's documented pattern) ----
+
+namespace bounce {
+class transport_system;
+}
+
+namespace Eigen::internal {
+template <>
+struct traits<bounce::transport_system> : public Eigen::internal::traits<Eigen::SparseMatrix<double>> {};
+}  // namespace Eigen::internal
+
+namespace bounce {
+
+// (I - K) on vectors of 3 x elements doubles (channels interleaved).
+class transport_system : public Eigen::EigenBase<transport_system> {
+ public:
+  using Scalar = double;
+  using RealScalar = double;
+  using StorageIndex = int;
+  enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic, IsRowMajor = false };
+
+  explicit transport_system(const hierarchical_solver& solver) : solver_(&solver) {}
+  Eigen::Index rows() const { return Eigen::Index(3 * solver_->mesh->element_count()); }
+  Eigen::Index cols() const { return rows(); }
+
+  template <typename rhs>
+  Eigen::Product<transport_system, rhs, Eigen::AliasFreeProduct> operator*(const Eigen::MatrixBase<rhs>& x) const {
+    return Eigen::Product<transport_system, rhs, Eigen::AliasFreeProduct>(*this, x.derived());
+  }
+
+  void apply(const double* in, double* out) const {
+    const std::size_t n = solver_->mesh->element_count();
+    std::vector<rgb>& x = x_;
+    x.resize(n);
+    for (std::size_t e = 0; e < n; ++e) x[e] = rgb(in[3 * e], in[3 * e + 1], in[3 * e + 2]);
+    apply_transport(*solver_, x, kx_);
+    for (std::size_t e = 0; e < n; ++e)
+      for (int c = 0; c < 3; ++c) out[3 * e + c] = x[e][c] - kx_[e][c];
+    ++applications;
+  }
+  mutable std::uint64_t applications = 0;
+
+ private:
+  const hierarchical_solver* solver_;
+  mutable std::vector<rgb> x_, kx_;
+};
+
+}  // namespace bounce
+
+namespace Eigen::internal {
+template <typename rhs>
+struct generic_product_impl<bounce::transport_system, rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<bounce::transport_system, rhs, generic_product_impl<bounce::transport_system, rhs>> {
+  using Scalar = typename Product<bounce::transport_system, rhs>::Scalar;
+  template <typename dest>
+  static void scaleAndAddTo(dest& dst, const bounce::transport_system& lhs, const rhs& x, const Scalar& alpha) {
+    const Eigen::VectorXd in = x;
+    Eigen::VectorXd out(in.size());
+    lhs.apply(in.data(), out.data());
+    dst += alpha * out;
+  }
+};
+}  // namespace Eigen::internal
+
+namespace bounce {
+
+void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
+  gather_push(solver, x, out);
+  for (std::size_t e = 0; e < out.size(); ++e) out[e] = solver.rho[e] * (out[e] * solver.normalizer[e]);
+}
+
+std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, const patch_mesh& mesh,
+                                                              const form_factor_context& context,
+                                                              const hierarchical_params& params) {
+  auto solver = std::make_unique<hierarchical_solver>();
+  solver->mesh = &mesh;
+  solver->source = &s;
+  solver->params = params;
+  solver->occlusion = context.occlusion;
+  solver->offset = context.offset;
+  solver->tree = build_cluster_tree(mesh);
+  solver->cube_slot.assign(solver->tree.nodes.size(), -1);
+  int slots = 0;
+  for (std::size_t i = 0; i < solver->tree.nodes.size(); ++i)
+    if (!solver->tree.nodes[i].oriented) solver->cube_slot[i] = slots++;
+
+  const std::size_t n = mesh.element_count();
+  solver->rho.resize(n);
+  solver->emission.resize(n);
+  solver->lamp.assign(n, rgb(0.0));
+  std::uint64_t rays = 0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    solver->rho[e] = (mesh.vertex_rho[t[0]] + mesh.vertex_rho[t[1]] + mesh.vertex_rho[t[2]]) / 3.0;
+    solver->emission[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
+    if (!s.lights.empty()) {
+      const cluster_node& leaf = solver->tree.nodes[solver->tree.leaf_of_element[e]];
+      solver->lamp[e] = solver->rho[e] * point_light_irradiance(s, context, leaf.centroid, leaf.normal, rays);
+    }
+  }
+  solver->progress.rays = rays;
+  solver->progress.closed = params.normalize_closed && scene_is_closed(*solver);
+  solver->emitted_power = 0.0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const rgb b = solver->emission[e] + solver->lamp[e];
+    solver->emitted_power += (b.r + b.g + b.b) * mesh.element_areas[e];
+  }
+  restart_hierarchical(*solver);
+  return solver;
+}
+
+void restart_hierarchical(hierarchical_solver& solver) {
+  solver.links.clear();
+  solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
+  solver.normalizer.assign(solver.mesh->element_count(), 1.0);
+  solver.radiosity = right_hand_side(solver);
+  solver.direct = solver.lamp;
+  solver.residual.assign(solver.radiosity.size(), rgb(0.0));
+  solver.residual_fraction = 1.0;
+  const std::uint64_t rays = solver.progress.rays;
+  const bool closed = solver.progress.closed;
+  solver.progress = hierarchy_progress{};
+  solver.progress.rays = rays;
+  solver.progress.closed = closed;
+  const double final_tolerance = solver.params.tolerance;
+  solver.progress.tolerance = final_tolerance * std::pow(solver.params.refine_factor, solver.params.rounds);
+}
+
+void refine_links(hierarchical_solver& solver, double tolerance) {
+  if (solver.tree.nodes.empty()) return;
+  transport_buffers node_buffers;
+  node_buffers.node_b.resize(solver.tree.nodes.size());
+  pull(solver, solver.radiosity, node_buffers.node_b);
+  tbb::enumerable_thread_specific<std::vector<hierarchy_link>> out;
+  std::atomic<std::size_t> count{0};
+  std::atomic<std::uint64_t> rays{0};
+  std::atomic<bool> limit_hit{false};
+  // The tolerance is relative to the power leaving all surfaces now (at
+  // least the emitted power): at high reflectance far more power circulates
+  // than is emitted, and each link's share of it is what matters.
+  double leaving = 0.0;
+  for (std::size_t e = 0; e < solver.radiosity.size(); ++e)
+    leaving += std::max(0.0, channel_sum_of(solver.radiosity[e])) * solver.mesh->element_areas[e];
+  const double power = std::max(leaving, solver.emitted_power) / 3.0;
+  refine_context ctx{solver, node_buffers.node_b, tolerance * power, out, count, rays, limit_hit};
+  if (solver.links.empty()) {
+    refine_self(ctx, 0);
+  } else {
+    const std::vector<hierarchy_link>& old = solver.links;
+    for_each_block(solver.params.parallel, old.size(), 256, [&](std::size_t b, std::size_t e) {
+      for (std::size_t l = b; l < e; ++l) {
+        const hierarchy_link& link = old[l];
+        const cluster_node& r = solver.tree.nodes[link.receiver];
+        const cluster_node& s = solver.tree.nodes[link.source];
+        const bool splittable = !(r.leaf() && s.leaf()) && !limit_hit.load(std::memory_order_relaxed);
+        const link_estimate est = estimate(solver, link.receiver, link.source);
+        const double error = est.bound * r.area * channel_max(node_buffers.node_b[link.source]);
+        const bool partial = link.visibility > 0.0f && link.visibility < 1.0f;
+        if (splittable &&
+            (error > ctx.tolerance || (partial && solver.params.partial_factor * error > ctx.tolerance))) {
+          split_pair(ctx, link.receiver, link.source);
+        } else {
+          out.local().push_back(link);
+          if (count.fetch_add(1, std::memory_order_relaxed) + 1 >= solver.params.max_links) limit_hit = true;
+        }
+      }
+    });
+  }
+  std::vector<hierarchy_link> links;
+  links.reserve(count.load());
+  for (auto& part : out) links.insert(links.end(), part.begin(), part.end());
+  solver.links = std::move(links);
+  index_links(solver);
+  solver.progress.rays += rays.load();
+  ++solver.progress.refinements;
+  if (limit_hit)
+    solver.progress.warning = "link limit reached (" + std::to_string(solver.links.size()) + " links, " +
+                              std::to_string(solver.links.size() * sizeof(hierarchy_link) >> 20) +
+                              " MiB): the solution keeps coarser links there";
+  update_normalizer(solver);
+}
+
+bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
+  if (!(solver.progress.links_final && solver.residual_fraction <= 1e-13)) ++solver.progress.steps;
+  const double final_tolerance = solver.params.tolerance;
+  if (solver.link_offsets.back() == 0 && solver.progress.refinements == 0) {
+    // First step: the coarsest links, then one Jacobi sweep from B = E: the direct light.
+    refine_links(solver, solver.progress.tolerance);
+    solver.progress.links_final = solver.progress.tolerance <= final_tolerance * (1.0 + 1e-9);
+    update_direct(solver);
+    std::vector<rgb> kx;
+    apply_transport(solver, solver.radiosity, kx);
+    ++solver.progress.operator_applications;
+    const std::vector<rgb> b = right_hand_side(solver);
+    for (std::size_t e = 0; e < kx.size(); ++e) solver.radiosity[e] = b[e] + kx[e];
+    update_residual(solver);
+    return true;
+  }
+  if (solver.residual_fraction <= refine_below && !solver.progress.links_final) {
+    solver.progress.tolerance = std::max(final_tolerance, solver.progress.tolerance / solver.params.refine_factor);
+    solver.progress.links_final = solver.progress.tolerance <= final_tolerance * (1.0 + 1e-9);
+    refine_links(solver, solver.progress.tolerance);
+    update_direct(solver);
+    update_residual(solver);
+    return true;
+  }
+  if (solver.progress.links_final && solver.residual_fraction <= 1e-13) return false;
+
+  const std::size_t n = solver.mesh->element_count();
+  Eigen::VectorXd b(3 * Eigen::Index(n)), x(3 * Eigen::Index(n));
+  const std::vector<rgb> rhs = right_hand_side(solver);
+  for (std::size_t e = 0; e < n; ++e)
+    for (int c = 0; c < 3; ++c) {
+      b[3 * Eigen::Index(e) + c] = rhs[e][c];
+      x[3 * Eigen::Index(e) + c] = solver.radiosity[e][c];
+    }
+  transport_system system(solver);
+  Eigen::BiCGSTAB<transport_system, Eigen::IdentityPreconditioner> bicgstab;
+  bicgstab.setMaxIterations(solver.params.iterations_per_step);
+  // Before the links are final, this tolerance only needs solving as far
+  // as the next refinement: stop there (Eigen's relative 2-norm residual).
+  bicgstab.setTolerance(solver.progress.links_final ? 1e-14 : 0.5 * refine_below);
+  bicgstab.compute(system);
+  Eigen::VectorXd next = bicgstab.solveWithGuess(b, x);
+  if (bicgstab.iterations() == 0) {
+    // Eigen's norm says solved where the area-weighted residual does not: go on.
+    bicgstab.setTolerance(1e-14);
+    next = bicgstab.solveWithGuess(b, x);
+  }
+  solver.progress.operator_applications += system.applications;
+  if (next.allFinite())
+    for (std::size_t e = 0; e < n; ++e)
+      solver.radiosity[e] =
+          rgb(next[3 * Eigen::Index(e)], next[3 * Eigen::Index(e) + 1], next[3 * Eigen::Index(e) + 2]);
+  update_residual(solver);
+  return true;
+}
+
+std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
+  const cluster_tree& tree = solver.tree;
+  std::vector<std::uint64_t> chain(tree.nodes.size(), 0);
+  std::uint64_t total = 0;
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    chain[i] = (solver.link_offsets[i + 1] - solver.link_offsets[i]) + (i > 0 ? chain[tree.nodes[i].parent] : 0);
+    if (tree.nodes[i].leaf()) total += chain[i];
+  }
+  return total;
+}
+
+bool final_gather(hierarchical_solver& solver) {
+  if (final_gather_cost(solver) > solver.params.gather_budget) return false;
+  const cluster_tree& tree = solver.tree;
+  const patch_mesh& mesh = *solver.mesh;
+  std::vector<rgb> node_b(tree.nodes.size()), node_e(tree.nodes.size());
+  pull(solver, solver.radiosity, node_b);
+  pull(solver, solver.emission, node_e);
+  const std::size_t n = mesh.element_count();
+  solver.gathered.assign(n, rgb(0.0));
+  solver.gathered_direct.assign(n, rgb(0.0));
+  std::atomic<std::uint64_t> evaluations{0};
+  for_each_block(solver.params.parallel, n, 256, [&](std::size_t b, std::size_t end) {
+    std::uint64_t count = 0;
+    for (std::size_t e = b; e < end; ++e) {
+      const cluster_node& leaf = tree.nodes[tree.leaf_of_element[e]];
+      rgb sum(0.0), direct(0.0);
+      double factors = 0.0;
+      for (int a = tree.leaf_of_element[e]; a >= 0; a = tree.nodes[a].parent) {
+        for (std::size_t l = solver.link_offsets[a]; l < solver.link_offsets[a + 1]; ++l) {
+          const hierarchy_link& link = solver.links[l];
+          const cluster_node& s = tree.nodes[link.source];
+          double f = 0.0;
+          if (s.leaf()) {
+            const glm::ivec3 t = mesh.elements[s.element];
+            const vec3 polygon[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+            f = point_polygon_form_factor(leaf.centroid, leaf.normal, polygon);
+          } else {
+            const vec3 d = s.centroid - leaf.centroid;
+            const double r2 = glm::dot(d, d);
+            const vec3 dir = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
+            const double send = projected_area(s, -dir);
+            f = std::min(1.0, std::max(0.0, glm::dot(leaf.normal, dir)) * send / (std::numbers::pi * r2 + send));
+          }
+          f *= double(link.visibility);
+          factors += f;
+          sum += f * node_b[link.source];
+          direct += f * node_e[link.source];
+          ++count;
+        }
+      }
+      const double scale = solver.progress.closed && factors > 0.0 ? 1.0 / factors : 1.0;
+      solver.gathered[e] = solver.rho[e] * (sum * scale);
+      solver.gathered_direct[e] = solver.rho[e] * (direct * scale);
+    }
+    evaluations += count;
+  });
+  solver.progress.gather_evaluations += evaluations.load();
+  return true;
+}
+
+std::vector<rgb> element_to_vertex(const patch_mesh& mesh, const std::vector<rgb>& per_element) {
+  std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
+  std::vector<double> area(mesh.vertex_count(), 0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      sum[mesh.elements[e][k]] += per_element[e] * mesh.element_areas[e];
+      area[mesh.elements[e][k]] += mesh.element_areas[e];
+    }
+  for (std::size_t v = 0; v < sum.size(); ++v)
+    if (area[v] > 0.0) sum[v] /= area[v];
+  return sum;
+}
+
+std::vector<double> link_density(const hierarchical_solver& solver) {
+  const cluster_tree& tree = solver.tree;
+  std::vector<double> per_node(tree.nodes.size(), 0.0);
+  // Links per unit area of their receiver, accumulated down the tree.
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    const double links = double(solver.link_offsets[i + 1] - solver.link_offsets[i]);
+    const double own = tree.nodes[i].area > 0.0 ? links / tree.nodes[i].area : 0.0;
+    per_node[i] = own + (tree.nodes[i].parent >= 0 ? per_node[tree.nodes[i].parent] : 0.0);
+  }
+  std::vector<double> out(solver.mesh->element_count());
+  for (std::size_t e = 0; e < out.size(); ++e) out[e] = per_node[tree.leaf_of_element[e]];
+  return out;
+}
+
+std::vector<rgb> element_level_solution(const hierarchical_solver& solver) {
+  const std::size_t n = solver.mesh->element_count();
+  BOUNCE_CHECK(n <= 4000);  // a dense matrix: small scenes only
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
+  tbb::enumerable_thread_specific<std::vector<hierarchy_link>> unused;
+  std::atomic<std::size_t> count{0};
+  std::atomic<std::uint64_t> rays{0};
+  std::atomic<bool> limit{false};
+  std::vector<rgb> none;
+  refine_context ctx{const_cast<hierarchical_solver&>(solver), none, 0.0, unused, count, rays, limit};
+  for (std::size_t i = 0; i < n; ++i) {
+    const int ri = solver.tree.leaf_of_element[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j) continue;
+      const int sj = solver.tree.leaf_of_element[j];
+      const link_estimate e = estimate(solver, ri, sj);
+      if (e.none || !(e.factor > 0.0)) continue;
+      f(Eigen::Index(i), Eigen::Index(j)) =
+          double(float(e.factor)) * double(visibility(ctx, ri, sj, solver.params.leaf_visibility_rays));
+    }
+  }
+  if (solver.progress.closed)
+    for (Eigen::Index i = 0; i < f.rows(); ++i) {
+      const double sum = f.row(i).sum();
+      if (sum > 0.0) f.row(i) /= sum;
+    }
+  std::vector<rgb> b(n);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::MatrixXd a = -f;
+    Eigen::VectorXd right = Eigen::VectorXd::Zero(Eigen::Index(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      a.row(Eigen::Index(i)) *= solver.rho[i][c];
+      a(Eigen::Index(i), Eigen::Index(i)) += 1.0;
+      right[Eigen::Index(i)] = solver.emission[i][c] + solver.lamp[i][c];
+    }
+    const Eigen::VectorXd x = a.partialPivLu().solve(right);
+    for (std::size_t i = 0; i < n; ++i) b[i][c] = x[Eigen::Index(i)];
+  }
+  return b;
+}
+
+}  // namespace bounce

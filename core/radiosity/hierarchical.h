@@ -1,0 +1,156 @@
+// Hierarchical radiosity with clustering (Hanrahan, Salzman & Aupperle
+// 1991; Smits, Arvo & Greenberg 1994; Sillion 1995).
+//
+// Unknowns: one radiosity per element (piecewise constant), published to
+// the vertices as the area-weighted mean of the elements around each one.
+// Nodes of the cluster tree (cluster_tree.h) exchange light through links:
+// a link (receiver <- source) carries a form-factor estimate and the
+// visible fraction from shadow rays. A link is split, on its larger side,
+// while the power it would carry, F x B_source x A_receiver, exceeds the
+// tolerance (a fraction of the scene's emitted power); partly visible
+// links must be four times smaller. Leaf-to-leaf links use Lambert's exact
+// point-to-polygon term from the receiver's centroid.
+//
+// An operator application is Hanrahan's gather and push-pull: pull the
+// element radiosities up the tree (area-weighted means), gather every link
+// into its receiver (clusters gather by direction into six axis bins),
+// push the gathered irradiance down to the elements and reflect it. The
+// system B = E + K B is solved with BiCGSTAB on that operator (Eigen,
+// matrix-free), so high reflectance does not stall it; between blocks of
+// iterations the links are refined with the tolerance lowered, with the
+// radiosity found so far as the oracle's B.
+//
+// Closed scenes: every element's form factors must sum to 1; the estimates
+// of coarse links do not quite, and at rho = 0.999 an error of 1e-4 in the
+// sum is 10% in B. Where the scene is closed (no sampled ray escapes it),
+// each element's gathered irradiance is divided by its form-factor sum.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/patch_mesh.h"
+#include "radiosity/cluster_tree.h"
+#include "radiosity/form_factor.h"
+
+namespace bounce {
+
+struct hierarchical_params {
+  // Final link tolerance, as a fraction of the scene's emitted power; the
+  // first links are made at tolerance x refine_factor^rounds, and every
+  // refinement divides it by refine_factor.
+  double tolerance = 1e-5;
+  double refine_factor = 8.0;
+  int rounds = 3;
+  // Partly visible links must carry this many times less than the tolerance.
+  double partial_factor = 4.0;
+  int visibility_rays = 4;       // rays per link between clusters or inner nodes
+  int leaf_visibility_rays = 9;  // rays per element-to-element link
+  int iterations_per_step = 4;   // BiCGSTAB iterations between publications
+  // Links are refined once the residual is below this fraction of the
+  // emitted power: each tolerance solved as far as the oracle needs.
+  double refine_below = 0.02;
+  // Past it no link is split (the pairs under way become links, at most
+  // two per tree node more) and a warning says so: 512 MiB of links.
+  std::size_t max_links = 32'000'000;
+  bool normalize_closed = true;
+  // Largest final gather (kernel evaluations) made at each publication.
+  std::uint64_t gather_budget = 60'000'000;
+  bool parallel = true;
+  std::uint64_t seed = 1;
+};
+
+// 16 bytes: what one link costs (plus the receiver index lists).
+struct hierarchy_link {
+  int receiver = -1;
+  int source = -1;
+  float factor = 0.0f;      // form factor (clusters: per unit area facing the source)
+  float visibility = 1.0f;  // fraction of the shadow rays that pass
+};
+
+struct hierarchy_progress {
+  double tolerance = 0.0;    // the oracle's current tolerance (fraction of emitted power)
+  bool links_final = false;  // tolerance has reached its final value
+  int refinements = 0;       // link refinement rounds made
+  std::uint64_t steps = 0;   // steps made (publications)
+  std::uint64_t operator_applications = 0;
+  std::uint64_t rays = 0;
+  bool closed = false;  // the scene is closed: form factors normalised
+  std::uint64_t gather_evaluations = 0;
+  std::string warning;  // e.g. the link limit was reached
+};
+
+struct hierarchical_solver {
+  const patch_mesh* mesh = nullptr;
+  const scene* source = nullptr;
+  hierarchical_params params;
+  std::shared_ptr<const occlusion_scene> occlusion;
+  double offset = 0.0;  // shadow-ray lift off surfaces
+  cluster_tree tree;
+  std::vector<hierarchy_link> links;      // sorted by receiver
+  std::vector<std::size_t> link_offsets;  // per receiver node: its links are [offsets[i], offsets[i+1])
+  std::vector<int> cube_slot;             // per node: its six-bin slot, or -1 for oriented nodes
+
+  // Per element
+  std::vector<rgb> rho;
+  std::vector<rgb> emission;       // E
+  std::vector<rgb> lamp;           // radiosity reflected from point lights (part of the right-hand side)
+  std::vector<double> normalizer;  // 1 / form-factor sum in closed scenes, else 1
+  std::vector<rgb> radiosity;      // B (the solution)
+  std::vector<rgb> direct;         // the part of B received straight from emitters and point lights
+  std::vector<rgb> residual;       // E + lamp + K B - B
+  // Final gather: each element's reflected light with the kernel evaluated
+  // at the element itself over the links of it and its ancestors.
+  std::vector<rgb> gathered, gathered_direct;
+
+  double emitted_power = 0.0;  // channel sum of the right-hand side x area
+  double residual_fraction = 1.0;
+  hierarchy_progress progress;
+};
+
+// Builds the tree, finds whether the scene is closed, and gives the point
+// lights' direct light to every element. Links come with the first step.
+std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, const patch_mesh& mesh,
+                                                              const form_factor_context& context,
+                                                              const hierarchical_params& params);
+
+// Back to B = E with the first, coarsest links.
+void restart_hierarchical(hierarchical_solver& solver);
+
+// One step: the first makes the coarsest links and one Jacobi sweep (the
+// direct light everywhere); the next run a block of BiCGSTAB iterations,
+// and refine the links once the residual is below `refine_below` (a
+// fraction of the emitted power) until the tolerance is final. Returns
+// false when there is nothing left to improve.
+bool step_hierarchical(hierarchical_solver& solver, double refine_below);
+
+// Refines every link against the current solution at `tolerance` (or
+// makes the first links from the root's self-link when there are none).
+void refine_links(hierarchical_solver& solver, double tolerance);
+
+// The operator: out = K x (x per element), K = reflect . push . gather . pull.
+void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out);
+
+// Final gather over the current solution (fills gathered and
+// gathered_direct): each element gathers over the links of itself and its
+// ancestors with the kernel evaluated at its own centre and normal. Costs
+// the sum over elements of those links; past params.gather_budget it is
+// not made and returns false.
+bool final_gather(hierarchical_solver& solver);
+std::uint64_t final_gather_cost(const hierarchical_solver& solver);
+
+// Vertex values: the area-weighted mean of the elements around each vertex.
+std::vector<rgb> element_to_vertex(const patch_mesh& mesh, const std::vector<rgb>& per_element);
+
+// Links per receiving element: every link whose receiver holds the element
+// counts, spread by area (links per unit area, for tests and the panel).
+std::vector<double> link_density(const hierarchical_solver& solver);
+
+// The element-level solution (every element gathers from every element,
+// the leaf-to-leaf form factor and visibility of the hierarchical solver,
+// normalised the same way), solved densely: small scenes only.
+std::vector<rgb> element_level_solution(const hierarchical_solver& solver);
+
+}  // namespace bounce

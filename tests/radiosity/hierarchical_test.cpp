@@ -1,0 +1,255 @@
+// Hierarchical radiosity with clustering against exact answers, the
+// element-level solution it converges to, and its own invariants.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "mesh/patch_mesh.h"
+#include "mesh_builders.h"
+#include "radiosity/hierarchical.h"
+#include "radiosity/radiosity.h"
+#include "scene/scene_io.h"
+
+namespace bounce {
+namespace {
+
+using std::numbers::pi;
+using testing::add_material;
+using testing::add_polygon;
+using testing::furnace;
+
+patch_mesh mesh_of(const scene& s, double max_edge) {
+  patch_mesh mesh;
+  std::string error;
+  EXPECT_TRUE(make_patch_mesh(s, {max_edge, 30.0}, mesh, error)) << error;
+  return mesh;
+}
+
+radiosity_params hierarchical(double tolerance) {
+  radiosity_params p;
+  p.method = solver_method::hierarchical;
+  p.hierarchical.tolerance = tolerance;
+  return p;
+}
+
+// Steps until the links are final and the residual is below `fraction`.
+void solve(radiosity_state& state, double fraction, int max_steps = 400) {
+  for (int i = 0; i < max_steps; ++i) {
+    if (state.stats.links_final && state.lights_shot && state.stats.unshot_fraction <= fraction) return;
+    if (!step_radiosity(state)) return;
+  }
+  ADD_FAILURE() << "not converged in " << max_steps << " steps: residual " << state.stats.unshot_fraction;
+}
+
+scene cornell() {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
+  return s;
+}
+
+double largest_relative_difference(const std::vector<rgb>& a, const std::vector<rgb>& b) {
+  double largest = 0.0, scale = 0.0;
+  for (const rgb& x : b) scale = std::max({scale, x.r, x.g, x.b});
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(a[i][c] - b[i][c]) / scale);
+  return largest;
+}
+
+TEST(Hierarchical, FurnaceIsExactAtHighReflectance) {
+  for (double rho : {0.5, 0.99, 0.999}) {
+    const scene s = furnace(rho);
+    const patch_mesh mesh = mesh_of(s, 0.25);
+    auto state = make_radiosity_state(s, mesh, hierarchical(1e-4));
+    solve(*state, 1e-9, 200);
+    ASSERT_TRUE(state->hierarchy->progress.closed);
+    const double exact = pi / (1.0 - rho);
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      ASSERT_NEAR(state->radiosity[v].g, exact, 1e-7 * exact) << "rho " << rho << " vertex " << v;
+    // Krylov iterations: a few dozen operator applications even at 0.999
+    // (Jacobi would need thousands).
+    EXPECT_LT(state->hierarchy->progress.operator_applications, 150u) << "rho " << rho;
+  }
+}
+
+TEST(Hierarchical, ConvergesToTheElementLevelSolutionAsTheToleranceFalls) {
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 150.0);
+  ASSERT_LT(mesh.element_count(), 1500u);
+  double previous = INFINITY;
+  for (double tolerance : {1e-3, 1e-5, 1e-12}) {
+    auto state = make_radiosity_state(s, mesh, hierarchical(tolerance));
+    solve(*state, 1e-12);
+    const hierarchical_solver& h = *state->hierarchy;
+    const double difference = largest_relative_difference(h.radiosity, element_level_solution(h));
+    EXPECT_LT(difference, previous) << "tolerance " << tolerance;
+    previous = difference;
+    if (tolerance == 1e-12) {
+      EXPECT_LT(difference, 1e-6);
+      // Every link is element to element at tolerance 0.
+      for (const hierarchy_link& link : h.links) {
+        ASSERT_TRUE(h.tree.nodes[link.receiver].leaf());
+        ASSERT_TRUE(h.tree.nodes[link.source].leaf());
+      }
+    }
+  }
+}
+
+TEST(Hierarchical, ManySmallCoplanarTrianglesReceiveWhatTheirPolygonDoes) {
+  // An emitter over a 1 x 1 floor made of a 40 x 40 grid of separate
+  // quads (3,200 triangles, one surface each), which the tree clusters.
+  scene s;
+  const int light = add_material(s, rgb(0.0), rgb(10.0));
+  const int white = add_material(s, rgb(0.5));
+  const std::vector<vec3> emitter = {{-0.2, 1.5, -0.2}, {0.2, 1.5, -0.2}, {0.2, 1.5, 0.2}, {-0.2, 1.5, 0.2}};
+  add_polygon(s, emitter, light);
+  const int cells = 40;
+  const double step = 1.0 / cells;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      const double x = -0.5 + i * step, z = -0.5 + j * step;
+      add_polygon(s, {{x, 0, z}, {x, 0, z + step}, {x + step, 0, z + step}, {x + step, 0, z}}, white);
+    }
+  const patch_mesh mesh = mesh_of(s, 10.0);
+  ASSERT_EQ(mesh.element_count(), 2u + 2u * cells * cells);
+  auto state = make_radiosity_state(s, mesh, hierarchical(1e-3));
+  solve(*state, 1e-9);
+  const hierarchical_solver& h = *state->hierarchy;
+  double reflected = 0.0;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) reflected += h.gathered[e].g * mesh.element_areas[e];
+  // What the floor as one polygon receives: Lambert's formula integrated
+  // over it (midpoint rule on a 200 x 200 grid, far finer than needed).
+  const double exitance = pi * 10.0;
+  double exact = 0.0;
+  const int n = 200;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const vec3 p(-0.5 + (i + 0.5) / n, 0.0, -0.5 + (j + 0.5) / n);
+      exact += point_polygon_form_factor(p, vec3(0, 1, 0), emitter) / (n * n);
+    }
+  exact *= 0.5 * exitance;
+  EXPECT_NEAR(reflected / exact, 1.0, 0.01);
+  // The grid is reached through clusters, not element by element.
+  EXPECT_LT(h.links.size(), std::size_t(cells * cells));
+}
+
+// Whether a floor point lies outside the short block's footprint (the
+// official data's corners) but within 30 mm of it: its contact shadow.
+bool near_short_block(const vec3& p) {
+  const vec2 corners[4] = {{130, 65}, {82, 225}, {240, 272}, {290, 114}};
+  const vec2 q(p.x, p.z);
+  double nearest = INFINITY;
+  int inside = 0;
+  for (int k = 0; k < 4; ++k) {
+    const vec2 a = corners[k], b = corners[(k + 1) % 4];
+    const double t = std::clamp(glm::dot(q - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+    nearest = std::min(nearest, glm::length(q - (a + t * (b - a))));
+    const vec2 edge = b - a, to = q - a;
+    inside += edge.x * to.y - edge.y * to.x > 0.0 ? 1 : -1;
+  }
+  return std::abs(inside) != 4 && nearest < 30.0;
+}
+
+TEST(Hierarchical, LinksConcentrateAtContactsAndShadows) {
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 15.0);
+  auto state = make_radiosity_state(s, mesh, hierarchical(1e-5));
+  solve(*state, 1e-3);
+  const std::vector<double> density = link_density(*state->hierarchy);
+  // Floor elements within 30 mm of the short block's foot against open floor.
+  double near_sum = 0.0, open_sum = 0.0;
+  int near_count = 0, open_count = 0;
+  const hierarchical_solver& h = *state->hierarchy;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const vec3 c = h.tree.nodes[h.tree.leaf_of_element[e]].centroid;
+    const vec3 n = mesh.element_normals[e];
+    if (n.y > 0.99 && c.y < 1.0 && near_short_block(c)) {
+      near_sum += density[e];
+      ++near_count;
+    }
+    // Open floor in front of the right wall, 70 mm or more from either block.
+    if (n.y > 0.99 && c.y < 1.0 && c.x > 360.0 && c.x < 540.0 && c.z > 10.0 && c.z < 175.0) {
+      open_sum += density[e];
+      ++open_count;
+    }
+  }
+  ASSERT_GT(near_count, 0);
+  ASSERT_GT(open_count, 0);
+  std::printf("links per unit area: contact %g, open floor %g\n", near_sum / near_count, open_sum / open_count);
+  EXPECT_GT(near_sum / near_count, 2.0 * open_sum / open_count);
+}
+
+TEST(Hierarchical, PointLightGivesTheInverseSquareLawAtElementCentres) {
+  scene s;
+  const int white = add_material(s, rgb(0.5));
+  add_polygon(s, {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, white);
+  s.lights.push_back({vec3(0.3, 2, 0.1), rgb(10, 20, 30)});
+  const patch_mesh mesh = mesh_of(s, 0.5);
+  auto state = make_radiosity_state(s, mesh, hierarchical(1e-5));
+  solve(*state, 1e-12);
+  const hierarchical_solver& h = *state->hierarchy;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const vec3 d = s.lights[0].position - h.tree.nodes[h.tree.leaf_of_element[e]].centroid;
+    EXPECT_NEAR(h.radiosity[e].b, 0.5 * 30 * d.y / std::pow(glm::length(d), 3.0), 1e-12);
+    EXPECT_EQ(h.direct[e], h.radiosity[e]);
+  }
+}
+
+TEST(Hierarchical, RefinesBetweenIterationsAndPublishesEveryStep) {
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 40.0);
+  auto state = make_radiosity_state(s, mesh, hierarchical(1e-5));
+  std::size_t links = 0;
+  double tolerance = INFINITY;
+  int refinements = 0;
+  for (int step = 0; step < 200 && step_radiosity(*state); ++step) {
+    // Every step publishes vertex radiosity for the view.
+    ASSERT_EQ(state->radiosity.size(), mesh.vertex_count());
+    const hierarchical_solver& h = *state->hierarchy;
+    if (h.progress.tolerance < tolerance) {
+      EXPECT_GE(h.links.size(), links);  // links are only ever split
+      links = h.links.size();
+      tolerance = h.progress.tolerance;
+      ++refinements;
+    }
+    if (state->stats.links_final && state->stats.unshot_fraction < 1e-6) break;
+  }
+  EXPECT_EQ(refinements, 4);  // the first links and three refinements
+  EXPECT_DOUBLE_EQ(tolerance, 1e-5);
+  EXPECT_LT(state->stats.unshot_fraction, 1e-6);
+}
+
+TEST(Hierarchical, LinkCostAndLimit) {
+  EXPECT_EQ(sizeof(hierarchy_link), 16u);
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 40.0);
+  radiosity_params p = hierarchical(1e-6);
+  p.hierarchical.max_links = 5000;
+  auto state = make_radiosity_state(s, mesh, p);
+  solve(*state, 1e-3);
+  const hierarchical_solver& h = *state->hierarchy;
+  // Past the limit no link is split: the pairs under way when it was hit
+  // become links, at most two per node of the tree.
+  EXPECT_LE(h.links.size(), 5000u + 2u * h.tree.nodes.size());
+  EXPECT_NE(h.progress.warning.find("link limit"), std::string::npos);
+  for (const rgb& b : state->radiosity) ASSERT_TRUE(std::isfinite(b.r) && b.r >= 0.0);
+}
+
+TEST(Hierarchical, ParallelAndSerialRunsAgree) {
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 60.0);
+  radiosity_params serial = hierarchical(1e-5);
+  serial.hierarchical.parallel = false;
+  auto a = make_radiosity_state(s, mesh, serial);
+  auto b = make_radiosity_state(s, mesh, hierarchical(1e-5));
+  solve(*a, 1e-6);
+  solve(*b, 1e-6);
+  ASSERT_EQ(a->hierarchy->links.size(), b->hierarchy->links.size());
+  EXPECT_LT(largest_relative_difference(a->radiosity, b->radiosity), 1e-12);
+}
+
+}  // namespace
+}  // namespace bounce
