@@ -319,6 +319,68 @@ ClipperLib::Paths piece_paths(const triangle_mesh& m, const std::vector<int>& tr
   return paths;
 }
 
+// Bounding boxes of the cover's triangles in a coarse grid, so that a
+// piece that does not overlap the cover (most of them: surfaces that only
+// share an edge, or lie apart in the same plane) skips the polygon
+// clipping, which costs far more on large scenes.
+class cover_boxes {
+ public:
+  void add(const ClipperLib::Paths& paths) {
+    for (const ClipperLib::Path& path : paths) {
+      const box b = bounds(path);
+      const long long x0 = cell(b.x0), x1 = cell(b.x1), y0 = cell(b.y0), y1 = cell(b.y1);
+      const int index = int(boxes_.size());
+      boxes_.push_back(b);
+      if ((x1 - x0 + 1) * (y1 - y0 + 1) > 64) {
+        large_.push_back(index);
+        continue;
+      }
+      for (long long x = x0; x <= x1; ++x)
+        for (long long y = y0; y <= y1; ++y) cells_[{x, y}].push_back(index);
+    }
+  }
+  // Whether some triangle of `paths` overlaps a cover triangle's box by
+  // more than the rounding of the integer frame (touching does not count).
+  bool may_overlap(const ClipperLib::Paths& paths) const {
+    for (const ClipperLib::Path& path : paths) {
+      const box b = bounds(path);
+      for (int i : large_)
+        if (overlap(b, boxes_[i])) return true;
+      for (long long x = cell(b.x0); x <= cell(b.x1); ++x)
+        for (long long y = cell(b.y0); y <= cell(b.y1); ++y) {
+          auto it = cells_.find({x, y});
+          if (it == cells_.end()) continue;
+          for (int i : it->second)
+            if (overlap(b, boxes_[i])) return true;
+        }
+    }
+    return false;
+  }
+
+ private:
+  struct box {
+    long long x0, y0, x1, y1;
+  };
+  static box bounds(const ClipperLib::Path& path) {
+    box b{path[0].X, path[0].Y, path[0].X, path[0].Y};
+    for (const ClipperLib::IntPoint& q : path) {
+      b.x0 = std::min(b.x0, q.X);
+      b.y0 = std::min(b.y0, q.Y);
+      b.x1 = std::max(b.x1, q.X);
+      b.y1 = std::max(b.y1, q.Y);
+    }
+    return b;
+  }
+  static bool overlap(const box& a, const box& b) {
+    constexpr long long slack = 4;  // integer units: rounding of shared corners
+    return std::min(a.x1, b.x1) - std::max(a.x0, b.x0) > slack && std::min(a.y1, b.y1) - std::max(a.y0, b.y0) > slack;
+  }
+  static long long cell(long long v) { return v >> 21; }  // |v| <= 2^28: at most 256 cells a side
+  std::vector<box> boxes_;
+  std::vector<int> large_;
+  std::map<std::pair<long long, long long>, std::vector<int>> cells_;
+};
+
 double tree_area(const ClipperLib::PolyTree& tree) {
   double area = 0.0;
   for (ClipperLib::PolyNode* node = tree.GetFirst(); node; node = node->GetNext())
@@ -448,11 +510,12 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
     });
     const plane_frame frame(plane.normal, centre, extent);
     ClipperLib::Paths cover;
+    cover_boxes cover_index;
     std::map<std::pair<long long, long long>, vec2> cover_corners;
     for (const piece& p : pieces) {
       triangle_mesh& m = tessellated[p.surface];
       const ClipperLib::Paths own = piece_paths(m, p.triangles, frame);
-      if (!cover.empty() && !own.empty()) {
+      if (!cover.empty() && !own.empty() && cover_index.may_overlap(own)) {
         ClipperLib::Clipper whole, cut;
         whole.PreserveCollinear(true);
         whole.AddPaths(own, ClipperLib::ptSubject, true);
@@ -480,6 +543,7 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
         }
       }
       cover.insert(cover.end(), own.begin(), own.end());
+      cover_index.add(own);
       for (int t : p.triangles)
         for (int k = 0; k < 3; ++k) {
           const vec3& corner = m.positions[m.triangles[t][k]];

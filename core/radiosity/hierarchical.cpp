@@ -106,7 +106,10 @@ void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, s
           sum += value;
           continue;
         }
-        const vec3 d = glm::normalize(tree.nodes[link.source].centroid - node.centroid);
+        const vec3 towards = tree.nodes[link.source].centroid - node.centroid;
+        const double length = glm::length(towards);
+        if (!(length > 0.0)) continue;  // no direction (and its estimate is 0)
+        const vec3 d = towards / length;
         for (int k = 0; k < 3; ++k) bins[2 * k + (d[k] >= 0.0 ? 0 : 1)] += std::abs(d[k]) * value;
       }
       if (slot < 0)
@@ -610,11 +613,25 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
     next = bicgstab.solveWithGuess(b, x);
   }
   solver.progress.operator_applications += system.applications;
-  if (next.allFinite())
+  const std::vector<rgb> before = solver.radiosity;
+  const double residual_before = solver.residual_fraction;
+  if (next.allFinite()) {
     for (std::size_t e = 0; e < n; ++e)
       solver.radiosity[e] =
           rgb(next[3 * Eigen::Index(e)], next[3 * Eigen::Index(e) + 1], next[3 * Eigen::Index(e) + 2]);
+    update_residual(solver);
+    if (solver.residual_fraction < residual_before) return true;
+  }
+  // BiCGSTAB broke down or made things worse (it can, on a non-normal
+  // operator): a Jacobi sweep instead, B = E + K B, which converges
+  // whenever every element's form factors sum to less than 1/rho.
+  solver.radiosity = before;
+  std::vector<rgb> kx;
+  apply_transport(solver, solver.radiosity, kx);
+  ++solver.progress.operator_applications;
+  for (std::size_t e = 0; e < n; ++e) solver.radiosity[e] = rhs[e] + kx[e];
   update_residual(solver);
+  ++solver.progress.jacobi_fallbacks;
   return true;
 }
 

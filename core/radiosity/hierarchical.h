@@ -47,7 +47,7 @@ struct hierarchical_params {
   // Partly visible links must carry this many times less than the tolerance.
   double partial_factor = 4.0;
   int visibility_rays = 4;       // rays per link between clusters or inner nodes
-  int leaf_visibility_rays = 9;  // rays per element-to-element link
+  int leaf_visibility_rays = 4;  // rays per element-to-element link
   int iterations_per_step = 4;   // BiCGSTAB iterations between publications
   // Links are refined once the residual is below this fraction of the
   // emitted power: each tolerance solved as far as the oracle needs.
@@ -76,6 +76,7 @@ struct hierarchy_progress {
   int refinements = 0;       // link refinement rounds made
   std::uint64_t steps = 0;   // steps made (publications)
   std::uint64_t operator_applications = 0;
+  std::uint64_t jacobi_fallbacks = 0;  // steps where BiCGSTAB did not lower the residual
   std::uint64_t rays = 0;
   bool closed = false;  // the scene is closed: form factors normalised
   std::uint64_t gather_evaluations = 0;
