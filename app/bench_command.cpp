@@ -8,12 +8,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
+#include <optional>
 #include <thread>
 
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +25,7 @@
 #include "bench_suites.h"
 #include "cli.h"
 #include "measure/bench.h"
+#include "scene/procedural.h"
 #include "scene/scene_io.h"
 
 extern char** environ;
@@ -58,9 +63,16 @@ double status_mib(const std::string& key) {
 }
 
 // Runs case `index` in this process and writes its JSON.
-int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) {
+int run_one_case(const suite_plan& plan, int index, const bench_options& options) {
+  const std::string& out_dir = options.out_dir;
   const double start_mib = status_mib("VmRSS");  // the program itself, before the run: subtracted from its peak
   const bench_case& c = plan.cases[std::size_t(index)];
+  // The thread limit holds for everything the run does with TBB (the
+  // solvers, the ray tracer, Embree's BVH builds), measuring included.
+  const int thread_limit = c.threads > 0 ? c.threads : options.threads;
+  std::optional<tbb::global_control> limit;
+  if (thread_limit > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(thread_limit));
+  const auto threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
   scene s;
   std::string error;
   if (!load_bench_scene(c, plan.picture_size, s, error)) {
@@ -82,7 +94,20 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
     }
     truth.exclude_above = emitter_threshold(s);
   }
-  bench_result r = run_bench(s, setting, truth);
+  // A run that does not fit in memory, or throws, is the case's error in
+  // its JSON: the suite goes on with its other cases.
+  bench_result r;
+  bool out_of_memory = false;
+  try {
+    r = run_bench(s, setting, truth);
+  } catch (const std::bad_alloc&) {
+    r = {};
+    r.error = "out of memory (at " + std::to_string(int(status_mib("VmHWM"))) + " MiB peak)";
+    out_of_memory = true;
+  } catch (const std::exception& e) {
+    r = {};
+    r.error = std::string("the run failed: ") + e.what();
+  }
   // A point that should have been measured and was not (pictures of
   // different sizes, every pixel left out) fails the run rather than
   // vanishing from the plots.
@@ -103,8 +128,17 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
   json j = {{"index", index},
             {"scene", c.scene},
             {"truth", truth.exact == exact_kind::none ? "path-traced picture" : "closed form"},
-            {"solver", solver_name(c.kind)},
+            {"solver", solver_name(c)},
             {"method", method_label(c)},
+            {"threads", threads},
+            {"triangles", triangle_count(s)},
+            {"thread_limit", c.threads},
+            {"until", c.settings.stop.unshot_fraction},
+            {"time_limit", c.settings.stop.seconds},
+            {"link_tolerance", c.settings.link_tolerance},
+            {"links", r.links},
+            {"final_link_tolerance", number(r.link_tolerance)},
+            {"links_final", r.links_final},
             {"shadow_rays", c.settings.form_factors.shadow_rays},
             {"hemicube_resolution", c.settings.form_factors.hemicube_resolution},
             {"max_edge", c.settings.max_edge},
@@ -120,6 +154,7 @@ int run_one_case(const suite_plan& plan, int index, const std::string& out_dir) 
             {"first_picture_seconds", number(r.first_picture_seconds)},
             {"seconds_per_shot", number(r.seconds_per_shot)},
             {"error", r.error},
+            {"out_of_memory", out_of_memory},
             {"curves", curves}};
   const fs::path file = fs::path(out_dir) / "cases" / (std::to_string(index) + ".json");
   std::ofstream out(file);
@@ -157,6 +192,16 @@ child_usage run_child(const std::vector<std::string>& args) {
   return u;
 }
 
+// Why a child failed, for the report.
+std::string failure_of(const child_usage& u) {
+  if (u.status < 0) return "the run could not be started";
+  if (u.status == 128 + SIGKILL)
+    return "the run was killed (signal 9, at " + std::to_string(int(u.peak_mib)) +
+           " MiB peak: out of memory, most likely)";
+  if (u.status > 128) return "the run ended on signal " + std::to_string(u.status - 128);
+  return "the run failed (exit status " + std::to_string(u.status) + ")";
+}
+
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);)
@@ -171,8 +216,8 @@ void add_bench_options(CLI::App& command, bench_options& options) {
       command
           .add_option("--suite", options.suite,
                       "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
-                      "(Cornell box)")
-          ->check(CLI::IsMember({"quick", "full", "adaptive"}))
+                      "(Cornell box); scale: procedural scenes of 10k to 1M triangles, hierarchical vs progressive")
+          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale"}))
           ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();
@@ -180,6 +225,12 @@ void add_bench_options(CLI::App& command, bench_options& options) {
       .add_flag("--report-only", options.report_only,
                 "write the CSV, plots and Markdown again from the folder's bench.json; run nothing")
       ->excludes(suite);  // the suite is the one bench.json holds
+  command
+      .add_option("--threads", options.threads,
+                  "threads each run may use (tbb::global_control); 0: every core. A case of the suite that sets "
+                  "its own (the scale suite's thread comparison) keeps it")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   command.add_option("--run-case", options.run_case, "internal: run one case of the suite in this process")->group("");
 }
 
@@ -191,7 +242,7 @@ int run_bench_command(const bench_options& options) {
                 << plan.cases.size() << " cases\n";
       return exit_usage;
     }
-    return run_one_case(plan, options.run_case, options.out_dir);
+    return run_one_case(plan, options.run_case, options);
   }
   if (options.report_only) {
     const fs::path json_path = fs::path(options.out_dir) / "bench.json";
@@ -223,29 +274,39 @@ int run_bench_command(const bench_options& options) {
   int failures = 0;
   for (std::size_t i = 0; i < plan.cases.size(); ++i) {
     const bench_case& c = plan.cases[i];
-    std::printf("bench: [%zu/%zu] %-22s %-11s %-8s edge %-6g ...", i + 1, plan.cases.size(), c.scene.c_str(),
-                solver_name(c.kind), method_label(c).c_str(), c.settings.max_edge);
+    std::printf("bench: [%zu/%zu] %-22s %-12s %-8s edge %-6g%s ...", i + 1, plan.cases.size(), c.scene.c_str(),
+                solver_name(c).c_str(), method_label(c).c_str(), c.settings.max_edge,
+                c.threads > 0 ? (" threads " + std::to_string(c.threads)).c_str() : "");
     std::fflush(stdout);
-    const child_usage usage = run_child(
-        {"bounce", "bench", "--suite", options.suite, "--out", options.out_dir, "--run-case", std::to_string(i)});
+    std::vector<std::string> args = {"bounce", "bench",         "--suite",    options.suite,
+                                     "--out",  options.out_dir, "--run-case", std::to_string(i)};
+    if (options.threads > 0) args.insert(args.end(), {"--threads", std::to_string(options.threads)});
+    const child_usage usage = run_child(args);
     json j;
     const fs::path file = fs::path(options.out_dir) / "cases" / (std::to_string(i) + ".json");
     if (usage.status == 0) {
       std::ifstream in(file);
       j = json::parse(in, nullptr, false);
     }
+    // Running out of memory is a measurement (the scene does not fit on
+    // this machine), reported like the others; any other failure fails the bench.
+    const bool killed = usage.status == 128 + SIGKILL;  // the kernel's OOM killer, most likely
     if (usage.status != 0 || j.is_discarded()) {
-      ++failures;
+      if (!killed) ++failures;
       j = {{"index", i},
            {"scene", c.scene},
-           {"solver", solver_name(c.kind)},
+           {"solver", solver_name(c)},
            {"method", method_label(c)},
            {"max_edge", c.settings.max_edge},
+           {"link_tolerance", c.settings.link_tolerance},
+           {"thread_limit", c.threads},
            {"growth", c.growth},
            {"elements", 0},
-           {"error", "the run failed (exit status " + std::to_string(usage.status) + ")"},
+           {"error", failure_of(usage)},
+           {"out_of_memory", killed},
            {"curves", json::array()}};
-    } else if (!j["error"].get<std::string>().empty() && c.kind != bench_solver::reference) {
+    } else if (!j["error"].get<std::string>().empty() && c.kind != bench_solver::reference &&
+               !j.value("out_of_memory", false)) {
       ++failures;  // only the matrix solver may decline a run (a mesh too large for it)
     }
     j["wall_seconds"] = usage.wall_seconds;

@@ -15,9 +15,10 @@ class App;
 namespace bounce {
 
 struct bench_options {
-  std::string suite = "quick";  // quick (under 2 minutes) | full (under 20)
+  std::string suite = "quick";  // quick (under 2 minutes) | full (under 20) | adaptive | scale
   std::string out_dir = "bench-out";
   bool report_only = false;  // rewrite the report from out_dir/bench.json, run nothing
+  int threads = 0;           // thread limit of every run (tbb::global_control); 0: every core
   int run_case = -1;         // internal: run this case of the suite in this process
 };
 

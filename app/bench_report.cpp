@@ -363,6 +363,129 @@ void targets_section(const json& results, const std::map<std::string, scene_curv
        << format("%.3f s", number((*nearest)["setup_seconds"])) << ").\n";
 }
 
+// Time to an error on a case's own curve (the solver alone, not two-pass),
+// or "not reached".
+std::string time_to(const json& c, double target) {
+  if (c["curves"].empty()) return "-";
+  const double t = time_to_error(to_curve(c["curves"][0]), target);
+  return std::isfinite(t) ? format("%.3g", t) : "not reached";
+}
+
+// The scale suite: per procedural scene and solver, what it takes to reach
+// a useful picture, how that grows with the scene, and the speed-up with threads.
+void scale_section(const json& results, std::ostringstream& md) {
+  if (results.value("suite", "") != "scale") return;
+  md << "\n## Scale (procedural scenes; times from the built scene, meshing and set-up included; error of the "
+        "solver's own picture, not two-pass)\n\n"
+     << "| scene | solver | triangles | elements | first picture s | to 10% s | to 5% s | to 2% s | final error | "
+        "unshot | time s | peak MiB | links |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  std::map<std::string, std::vector<double>> triangles, to_10, to_5;  // per solver
+  for (const json& c : results["cases"]) {
+    if (c.value("thread_limit", 0) > 0 || c.value("solver", "") == "path") continue;
+    const std::string solver = c.value("solver", "");
+    md << "| " << c["scene"].get<std::string>() << " | " << solver << " | ";
+    if (!c["error"].get<std::string>().empty() || c["curves"].empty() || c["curves"][0]["points"].empty()) {
+      md << "- | - | failed: " << c["error"].get<std::string>() << " | | | | | | | | |\n";
+      continue;
+    }
+    const json& last = last_point(c["curves"][0]);
+    const bench_curve curve = to_curve(c["curves"][0]);
+    triangles[solver].push_back(number(c.value("triangles", json())));
+    to_10[solver].push_back(time_to_error(curve, 0.1));
+    to_5[solver].push_back(time_to_error(curve, 0.05));
+    md << c.value("triangles", std::size_t(0)) << " | " << c["elements"].get<std::size_t>() << " | "
+       << format("%.3g", number(c["first_picture_seconds"])) << " | " << time_to(c, 0.1) << " | " << time_to(c, 0.05)
+       << " | " << time_to(c, 0.02) << " | " << percent(number(last["error"])) << " | "
+       << percent(number(last["unshot_fraction"])) << " | " << format("%.3g", number(last["seconds"])) << " | "
+       << format("%.0f", number(c["peak_mib"])) << " | "
+       << (solver == "hierarchical" ? std::to_string(c.value("links", std::uint64_t(0))) : "-") << " |\n";
+  }
+  md << "\nFitted exponents k of time ~ triangles^k (least squares in log-log over the scenes that reached the "
+        "error):";
+  for (const auto& [solver, n] : triangles) {
+    auto reached = [](const std::vector<double>& t) {
+      return std::count_if(t.begin(), t.end(), [](double v) { return std::isfinite(v); });
+    };
+    auto scenes = [](std::ptrdiff_t k) { return std::to_string(k) + (k == 1 ? " scene" : " scenes"); };
+    md << " " << solver << ": to 10% " << format("%.2f", growth_exponent(n, to_10[solver])) << " ("
+       << scenes(reached(to_10[solver])) << "), to 5% " << format("%.2f", growth_exponent(n, to_5[solver])) << " ("
+       << scenes(reached(to_5[solver])) << ");";
+  }
+  double reference_seconds = 0.0;
+  for (const json& note : results["references"]) reference_seconds += number(note.value("seconds", json(0.0)));
+  md << " '-': fewer than two scenes reached it. Peak MiB is the run's process, the picture judge's ray-tracing "
+        "BVH included; unshot is the residual (hierarchical) or unshot power (progressive) left at the end, '-' "
+        "when not finite. The path-traced references took "
+     << format("%.0f", reference_seconds) << " s of the suite's time (0: cached).\n";
+
+  // The same hierarchical run on 1 and on 2 threads.
+  std::vector<const json*> runs;
+  for (const json& c : results["cases"])
+    if (c.value("thread_limit", 0) > 0 && c["error"].get<std::string>().empty() && !c["curves"].empty() &&
+        !c["curves"][0]["points"].empty())
+      runs.push_back(&c);
+  std::sort(runs.begin(), runs.end(),
+            [](const json* a, const json* b) { return a->value("thread_limit", 0) < b->value("thread_limit", 0); });
+  bool any = false;
+  for (const json& c : results["cases"]) any = any || c.value("thread_limit", 0) > 0;
+  if (!any) return;
+  md << "\n### Threads\n\n"
+     << "| scene | solver | threads | to 10% s | to 5% s | to 2% s | final error | unshot | shots | time s | "
+        "cores busy | stopped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  auto stopped = [](const json& c) {
+    const json& last = last_point(c["curves"][0]);
+    const bool converged = c.value("links_final", false) && number(last["unshot_fraction"]) <= number(c["until"]);
+    return converged ? "at " + percent(number(c["until"])) + " unshot" : "at the time limit";
+  };
+  for (const json& c : results["cases"]) {
+    if (c.value("thread_limit", 0) <= 0) continue;
+    md << "| " << c["scene"].get<std::string>() << " | " << c.value("solver", "") << " | " << c.value("thread_limit", 0)
+       << " | ";
+    if (!c["error"].get<std::string>().empty() || c["curves"].empty() || c["curves"][0]["points"].empty()) {
+      md << "failed: " << c["error"].get<std::string>() << " | | | | | | | | |\n";
+      continue;
+    }
+    const json& last = last_point(c["curves"][0]);
+    md << time_to(c, 0.1) << " | " << time_to(c, 0.05) << " | " << time_to(c, 0.02) << " | "
+       << percent(number(last["error"])) << " | " << percent(number(last["unshot_fraction"])) << " | "
+       << last["shots"].get<std::uint64_t>() << " | " << format("%.3g", number(last["seconds"])) << " | "
+       << format("%.2f", number(c["cpu_seconds"]) / number(c["wall_seconds"])) << " | " << stopped(c) << " |\n";
+  }
+  if (runs.size() < 2) return;
+  const json& one = *runs.front();
+  const json& many = *runs.back();
+  md << "\nSpeed-up of " << many.value("thread_limit", 0) << " threads over " << one.value("thread_limit", 0)
+     << " (time on " << one.value("thread_limit", 0) << " / time on " << many.value("thread_limit", 0) << "):";
+  for (double target : {0.1, 0.05, 0.02}) {
+    const double a = time_to_error(to_curve(one["curves"][0]), target);
+    const double b = time_to_error(to_curve(many["curves"][0]), target);
+    md << " to " << percent(target) << " " << (std::isfinite(a) && std::isfinite(b) ? format("%.2fx", a / b) : "-")
+       << ";";
+  }
+  const std::string how_one = stopped(one), how_many = stopped(many);
+  const json &last_one = last_point(one["curves"][0]), &last_many = last_point(many["curves"][0]);
+  md << " total time to the stopping point ";
+  if (how_one == how_many && how_one != "at the time limit")
+    md << format("%.2fx", number(last_one["seconds"]) / number(last_many["seconds"])) << " (both stopped " << how_one
+       << ", after " << last_one["shots"].get<std::uint64_t>() << " and " << last_many["shots"].get<std::uint64_t>()
+       << " operator applications)";
+  else
+    md << "- (the runs stopped " << how_one << " and " << how_many << ")";
+  md << ". Times to an error are interpolated between the measured stops. Cores busy: the run's CPU time over its "
+        "wall time (measuring included); below the thread count, the threads waited for each other or for the "
+        "machine's other load.\n";
+}
+
+// Cases of scenes that have no curve at all (every run of the scene failed).
+void failed_section(const json& results, const std::map<std::string, scene_curves>& by_scene, std::ostringstream& md) {
+  std::ostringstream lines;
+  for (const json& c : results["cases"])
+    if (!by_scene.count(c["scene"].get<std::string>()) && !c["error"].get<std::string>().empty())
+      lines << "- " << c["scene"].get<std::string>() << ", " << c.value("solver", "") << " " << c.value("method", "")
+            << ": " << c["error"].get<std::string>() << "\n";
+  if (!lines.str().empty()) md << "\n## Runs that failed (scenes with no measured curve)\n\n" << lines.str();
+}
+
 }  // namespace
 
 std::string write_bench_report(const json& results, const std::string& out_dir) {
@@ -410,6 +533,8 @@ std::string write_bench_report(const json& results, const std::string& out_dir) 
   }
   targets_section(results, by_scene, md);
   growth_section(results, md);
+  scale_section(results, md);
+  failed_section(results, by_scene, md);
   std::ofstream(fs::path(out_dir) / "bench.md") << md.str();
   return md.str();
 }

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <initializer_list>
 #include <stdexcept>
+#include <utility>
 
+#include "scene/procedural.h"
 #include "scene/scene_io.h"
 
 namespace bounce {
@@ -17,6 +19,13 @@ const bench_scene bench_scenes[] = {
     {"sphere", "embedded:bench/sphere.json", exact_kind::sphere_interior},
     {"squares-perpendicular", "embedded:bench/squares_perpendicular.json", exact_kind::emitter_receiver},
     {"squares-parallel", "embedded:bench/squares_parallel.json", exact_kind::emitter_receiver},
+    // Built in code (procedural.h), measured against path-traced pictures.
+    {"box-room-60", nullptr, exact_kind::none},
+    {"interior-10k", nullptr, exact_kind::none},
+    {"interior-30k", nullptr, exact_kind::none},
+    {"interior-100k", nullptr, exact_kind::none},
+    {"interior-300k", nullptr, exact_kind::none},
+    {"interior-1m", nullptr, exact_kind::none},
 };
 
 // A progressive run: `rays` shadow rays (raycast) or a hemicube of
@@ -26,6 +35,7 @@ bench_case progressive_case(const std::string& scene, form_factor_method method,
                             double patch_factor, double until, double max_seconds) {
   bench_case c;
   c.scene = scene;
+  c.settings.method = solver_method::progressive;
   c.settings.form_factors.method = method;
   c.settings.form_factors.shadow_rays = rays;
   c.settings.form_factors.hemicube_resolution = hemicube;
@@ -66,6 +76,7 @@ void add_reference(suite_plan& plan, const std::string& scene, double edge) {
   bench_case c;
   c.scene = scene;
   c.kind = bench_solver::reference;
+  c.settings.method = solver_method::progressive;  // meshed as the progressive solver's elements
   c.settings.max_edge = edge;
   plan.cases.push_back(c);
 }
@@ -76,6 +87,34 @@ void add_path(suite_plan& plan, const std::string& scene, double max_seconds) {
   c.kind = bench_solver::path_tracer;
   c.settings.stop.seconds = max_seconds;
   plan.cases.push_back(c);
+}
+
+// A hierarchical run: the scene's hierarchical mesh (or elements of
+// `edge`), links refined down to `tolerance`, stopping at `until` of the
+// emitted power left as residual or after `max_seconds`.
+bench_case hierarchical_case(const std::string& scene, double tolerance, double max_seconds, double until = 1e-3,
+                             double edge = 0.0) {
+  bench_case c;
+  c.scene = scene;
+  c.settings.method = solver_method::hierarchical;
+  c.settings.link_tolerance = tolerance;
+  c.settings.max_edge = edge;
+  c.settings.stop.unshot_fraction = until;
+  c.settings.stop.seconds = max_seconds;
+  return c;
+}
+
+// A run with the solver's own defaults (mesh, patches, form factors, link
+// tolerance) but the bench's stop: 1e-3 of the power left, or `max_seconds`.
+bench_case default_case(const std::string& scene, solver_method method, double max_seconds, int threads = 0) {
+  bench_case c;
+  c.scene = scene;
+  c.settings = solver_settings{};
+  c.settings.method = method;
+  c.settings.stop.unshot_fraction = 1e-3;
+  c.settings.stop.seconds = max_seconds;
+  c.threads = threads;
+  return c;
 }
 
 void add_growth(suite_plan& plan, std::initializer_list<double> edges, double max_seconds) {
@@ -112,8 +151,36 @@ suite_plan make_suite(const std::string& suite) {
     add_progressive(plan, "squares-parallel", {0.1}, {16}, {}, 2.0);
     add_growth(plan, {150, 100}, 5.0);
     add_adaptive(plan, {150}, {0.5}, 3.0);
+    const double tolerance = solver_settings{}.link_tolerance;
+    plan.cases.push_back(hierarchical_case("cornell", tolerance, 3.0));
+    plan.cases.push_back(hierarchical_case("furnace-0.99", tolerance, 2.0));
+    plan.cases.push_back(hierarchical_case("occluders", tolerance, 2.0));
     plan.picture_size = 64;
     plan.reference_spp = 1024;
+    return plan;
+  }
+  if (suite == "scale") {
+    // Procedural scenes from 10k to 1M triangles: how each solver's time to
+    // an error grows with the scene. The progressive solver is given 60 s
+    // on the smaller ones (it does not converge on the larger: that is the
+    // point); the hierarchical solver runs on all, with its defaults.
+    const std::pair<const char*, double> hierarchical_runs[] = {
+        {"box-room-60", 30.0},   {"interior-10k", 15.0},  {"interior-30k", 20.0},
+        {"interior-100k", 30.0}, {"interior-300k", 45.0}, {"interior-1m", 60.0},
+    };
+    for (const auto& [scene, seconds] : hierarchical_runs)
+      plan.cases.push_back(default_case(scene, solver_method::hierarchical, seconds));
+    for (const char* scene : {"box-room-60", "interior-10k", "interior-30k", "interior-100k"})
+      plan.cases.push_back(default_case(scene, solver_method::progressive, 60.0));
+    // The path tracer on two of them: its error against the reference at
+    // doubling sample counts also shows the reference's own noise.
+    add_path(plan, "box-room-60", 15.0);
+    add_path(plan, "interior-10k", 15.0);
+    // Speed-up with threads: the same run on 1 and on 2 threads.
+    for (int threads : {1, 2})
+      plan.cases.push_back(default_case("interior-100k", solver_method::hierarchical, 120.0, threads));
+    plan.picture_size = 128;
+    plan.reference_spp = 512;
     return plan;
   }
   if (suite == "adaptive") {
@@ -150,6 +217,10 @@ suite_plan make_suite(const std::string& suite) {
   add_reference(plan, "sphere", 0.5);
   add_progressive(plan, "squares-perpendicular", {0.1, 0.05}, {1, 16}, {64, 256}, 10.0);
   add_progressive(plan, "squares-parallel", {0.1, 0.05}, {16}, {256}, 10.0);
+  for (double tolerance : {3e-5, 1e-5, 3e-6, 1e-6}) plan.cases.push_back(hierarchical_case("cornell", tolerance, 25.0));
+  plan.cases.push_back(hierarchical_case("furnace-0.99", solver_settings{}.link_tolerance, 40.0, 1e-5));
+  plan.cases.push_back(hierarchical_case("occluders", solver_settings{}.link_tolerance, 20.0));
+  plan.cases.push_back(hierarchical_case("sphere", solver_settings{}.link_tolerance, 15.0));
   plan.cases.push_back(progressive_case("cornell", form_factor_method::raycast, 4, 256, 15, 4.0, 1e-3, 60.0));
   add_growth(plan, {70, 30, 15, 7.5}, 90.0);
   plan.picture_size = 128;
@@ -157,10 +228,10 @@ suite_plan make_suite(const std::string& suite) {
   return plan;
 }
 
-const char* solver_name(bench_solver s) {
-  switch (s) {
-    case bench_solver::progressive:
-      return "progressive";
+std::string solver_name(const bench_case& c) {
+  switch (c.kind) {
+    case bench_solver::radiosity:
+      return std::string(name_of(c.settings.method));
     case bench_solver::reference:
       return "reference";
     case bench_solver::path_tracer:
@@ -170,35 +241,63 @@ const char* solver_name(bench_solver s) {
 }
 
 std::string method_label(const bench_case& c) {
-  return c.kind == bench_solver::path_tracer ? "path" : std::string(name_of(c.settings.form_factors.method));
+  if (c.kind == bench_solver::path_tracer) return "path";
+  if (c.kind == bench_solver::radiosity && c.settings.method == solver_method::hierarchical) return "links";
+  return std::string(name_of(c.settings.form_factors.method));
 }
 
-// The label of a curve: its method with the setting that matters for it.
+// The label of a curve: its solver and method with the settings that
+// matter for it, e.g. "progressive raycast 16, edge 60, element shooters",
+// "hierarchical, link tolerance 1e-05, default mesh, 1 thread".
 std::string curve_label(const bench_case& c, const std::string& curve_method) {
-  char buffer[160];
   if (c.kind == bench_solver::path_tracer) return "path tracer";
+  const bool progressive = c.kind == bench_solver::radiosity && c.settings.method == solver_method::progressive;
+  const bool hierarchical = c.kind == bench_solver::radiosity && !progressive;
   const form_factor_params& ff = c.settings.form_factors;
   std::string setting;
-  if (c.kind == bench_solver::progressive)
+  char buffer[200];
+  if (progressive)
     setting = " " + std::to_string(ff.method == form_factor_method::hemicube ? ff.hemicube_resolution : ff.shadow_rays);
-  char adaptive[48] = "";
-  if (c.settings.adaptive.enabled)
-    std::snprintf(adaptive, sizeof adaptive, ", adaptive %g", c.settings.adaptive.tolerance);
-  std::snprintf(buffer, sizeof buffer, "%s, edge %g%s%s%s", setting.c_str(), c.settings.max_edge,
-                c.kind == bench_solver::progressive && c.settings.patch_edge == 0.0 ? ", element shooters" : "",
-                adaptive, c.growth ? ", growth" : "");
+  if (hierarchical) {
+    std::snprintf(buffer, sizeof buffer, ", link tolerance %g", c.settings.link_tolerance);
+    setting = buffer;
+  }
+  std::string details;
+  if (c.settings.max_edge > 0.0) {
+    std::snprintf(buffer, sizeof buffer, ", edge %g", c.settings.max_edge);
+    details = buffer;
+  } else {
+    details = ", default mesh";
+  }
+  if (progressive && c.settings.patch_edge == 0.0) details += ", element shooters";
+  if (c.settings.adaptive.enabled) {
+    std::snprintf(buffer, sizeof buffer, ", adaptive %g", c.settings.adaptive.tolerance);
+    details += buffer;
+  }
+  if (hierarchical && c.settings.stop.unshot_fraction != bench_case{}.settings.stop.unshot_fraction) {
+    std::snprintf(buffer, sizeof buffer, ", to %g", c.settings.stop.unshot_fraction);
+    details += buffer;
+  }
+  if (c.threads > 0) details += c.threads == 1 ? ", 1 thread" : ", " + std::to_string(c.threads) + " threads";
+  if (c.growth) details += ", growth";
   std::string base = curve_method;
   const std::size_t plus = base.find(" + ");
   const std::string suffix = plus == std::string::npos ? "" : base.substr(plus);
   if (plus != std::string::npos) base.resize(plus);
-  return base + buffer + suffix;
+  // The progressive solver's curves are named for their form-factor method: the solver's name goes first.
+  return (progressive ? "progressive " : "") + base + setting + details + suffix;
 }
 
 bool load_bench_scene(const bench_case& c, int picture_size, scene& s, std::string& error) {
-  load_report report;
-  if (!load_scene(find_scene(c.scene).path, s, report)) {
-    error = report.error;
-    return false;
+  const bench_scene& b = find_scene(c.scene);
+  if (!b.path) {
+    if (!make_procedural_scene(b.name, s, error)) return false;
+  } else {
+    load_report report;
+    if (!load_scene(b.path, s, report)) {
+      error = report.error;
+      return false;
+    }
   }
   s.view.width = s.view.height = picture_size;
   return true;

@@ -14,15 +14,17 @@ namespace bounce {
 
 struct bench_scene {
   const char* name;
-  const char* path;
+  const char* path;  // nullptr: built by make_procedural_scene(name) (procedural.h)
   exact_kind exact;
 };
 
 // One run of the suite: a scene, a solver and its setting.
 struct bench_case {
   std::string scene;
-  bench_solver kind = bench_solver::progressive;
-  // Mesh (patch_edge: 0, elements shoot), form factors, adaptive meshing, stop.
+  bench_solver kind = bench_solver::radiosity;
+  // Solver (settings.method: the program's default, hierarchical, unless
+  // set), mesh (patch_edge: 0, elements shoot), form factors, adaptive
+  // meshing, link tolerance, stop.
   solver_settings settings = [] {
     solver_settings d;
     d.patch_edge = 0.0;
@@ -31,6 +33,7 @@ struct bench_case {
     return d;
   }();
   bool growth = false;  // timings and memory only, for the growth with element count
+  int threads = 0;      // the run's thread limit; 0: the bench's --threads (0 there: every core)
 };
 
 struct suite_plan {
@@ -42,12 +45,13 @@ struct suite_plan {
 // The bench scene named `name` (one of the suites' scene names).
 const bench_scene& find_scene(const std::string& name);
 
-// The cases of a suite: "quick", "adaptive" or "full" (anything else).
+// The cases of a suite: "quick", "adaptive", "scale" or "full" (anything else).
 suite_plan make_suite(const std::string& suite);
 
-// Names for reports: the solver, the method, and a curve's label (its
-// method with the setting that matters for it).
-const char* solver_name(bench_solver s);
+// Names for reports: the solver (hierarchical, progressive, reference,
+// path), the method, and a curve's label (its solver and method with the
+// setting that matters for it).
+std::string solver_name(const bench_case& c);
 std::string method_label(const bench_case& c);
 std::string curve_label(const bench_case& c, const std::string& curve_method);
 

@@ -38,11 +38,13 @@ struct vertex_judge {
 
 bool all_emission_shot(const radiosity_state& state) {
   if (!state.lights_shot) return false;
+  // The hierarchical solver's first step carries the direct light everywhere.
+  if (state.params.method == solver_method::hierarchical) return true;
   return std::all_of(state.unshot_emission.begin(), state.unshot_emission.end(),
                      [](const rgb& u) { return u.r == 0.0 && u.g == 0.0 && u.b == 0.0; });
 }
 
-bench_result run_progressive(const scene& s, const bench_setting& setting, const bench_truth& truth) {
+bench_result run_radiosity_solver(const scene& s, const bench_setting& setting, const bench_truth& truth) {
   bench_result result;
   run_clock clock;
   patch_mesh mesh;
@@ -63,7 +65,10 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
         vertices = std::make_unique<vertex_judge>(s, truth.exact);
     });
   }
-  const std::string method(name_of(setting.solver.form_factors.method));
+  const bool hierarchical = setting.solver.method == solver_method::hierarchical;
+  // The hierarchical solver's curve is named for it: it makes its own links
+  // and form factors; the progressive solver's for its form-factor method.
+  const std::string method(hierarchical ? name_of(setting.solver.method) : name_of(setting.solver.form_factors.method));
   result.curves.push_back({method, {}});
   if (pictures) result.curves.push_back({method + " + two-pass", {}});
 
@@ -74,7 +79,8 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
     p.shots = state->stats.shots;
     p.rays = state->stats.rays;
     p.unshot_fraction = state->stats.unshot_fraction;
-    p.balance_error = balance_error(state->balance);
+    // The hierarchical solver keeps no shooting balance: its residual is the unshot fraction.
+    p.balance_error = hierarchical ? not_measured : balance_error(state->balance);
     p.elements = state->mesh->element_count();
     clock.exclude([&] {
       const patch_mesh& mesh = *state->mesh;  // refined, with adaptive meshing
@@ -111,6 +117,11 @@ bench_result run_progressive(const scene& s, const bench_setting& setting, const
     if (done) break;
   }
   if (state->stats.shots > 0) result.seconds_per_shot = state->stats.seconds / double(state->stats.shots);
+  if (hierarchical) {
+    result.links = state->stats.links;
+    result.link_tolerance = state->stats.link_tolerance;
+    result.links_final = state->stats.links_final;
+  }
   result.elements = state->mesh->element_count();  // adaptive: the refined mesh's
   result.vertices = state->mesh->vertex_count();
   return result;
@@ -197,8 +208,8 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
 
 bench_result run_bench(const scene& s, const bench_setting& setting, const bench_truth& truth) {
   switch (setting.kind) {
-    case bench_solver::progressive:
-      return run_progressive(s, setting, truth);
+    case bench_solver::radiosity:
+      return run_radiosity_solver(s, setting, truth);
     case bench_solver::reference:
       return run_reference(s, setting, truth);
     case bench_solver::path_tracer:

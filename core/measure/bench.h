@@ -6,6 +6,7 @@
 // picture (picture_judge.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,15 +18,15 @@
 namespace bounce {
 
 enum class bench_solver {
-  progressive,  // shooting (Cohen 1988), error recorded at stops along the run
+  radiosity,    // the solver solver.method names (hierarchical or progressive), error recorded at stops along the run
   reference,    // full matrix: LU and Gauss-Seidel, one point each
   path_tracer,  // the reference integrator itself, at doubling sample counts
 };
 
 struct bench_setting {
-  bench_solver kind = bench_solver::progressive;
-  // Mesh, form factors, adaptive meshing and the stop (progressive; the
-  // path tracer stops at stop.seconds too).
+  bench_solver kind = bench_solver::radiosity;
+  // Solver (method), mesh, form factors, adaptive meshing, link tolerance
+  // and the stop (radiosity; the path tracer stops at stop.seconds too).
   solver_settings solver = [] {
     solver_settings d;
     d.stop.unshot_fraction = 1e-3;
@@ -40,7 +41,10 @@ struct bench_result {
   std::size_t elements = 0, vertices = 0, patches = 0;
   double setup_seconds = 0.0;                   // meshing, BVH and form-factor set-up
   double first_picture_seconds = not_measured;  // until every emitter has shot: direct light everywhere
-  double seconds_per_shot = not_measured;
+  double seconds_per_shot = not_measured;       // progressive: per shot; hierarchical: per operator application
+  std::uint64_t links = 0;                      // hierarchical: links at the end of the run
+  double link_tolerance = not_measured;         // hierarchical: the oracle's tolerance at the end
+  bool links_final = true;                      // hierarchical: the tolerance reached its final value
   std::vector<bench_curve> curves;
   std::string error;  // why the run could not be made (e.g. too large for the full matrix)
 };

@@ -154,6 +154,7 @@ TEST(BenchExact, FurnaceAndSphereClosedForms) {
 TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
   const scene s = bench_scene("furnace.json");
   bench_setting setting;
+  setting.solver.method = solver_method::progressive;  // not the default
   setting.solver.max_edge = 0.5;
   setting.solver.patch_edge = 0.0;
   setting.solver.stop.unshot_fraction = 1e-4;
@@ -162,6 +163,8 @@ TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
   const bench_result r = run_bench(s, setting, truth);
   ASSERT_TRUE(r.error.empty()) << r.error;
   ASSERT_EQ(r.curves.size(), 1u);
+  EXPECT_EQ(r.curves[0].method, "raycast");
+  EXPECT_EQ(r.links, 0u);
   const auto& points = r.curves[0].points;
   ASSERT_GE(points.size(), 5u);
   for (std::size_t i = 1; i < points.size(); ++i) {
@@ -173,6 +176,34 @@ TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
   EXPECT_LT(points.back().error, 1e-3);
   EXPECT_LT(points.back().balance_error, 1e-12);
   EXPECT_GT(r.first_picture_seconds, 0.0);
+}
+
+// The default solver: the bench runs the hierarchical solver through the
+// same state, names its curve for it, and reports its links at the end.
+TEST(BenchRun, HierarchicalFurnaceConvergesAndReportsItsLinks) {
+  const scene s = bench_scene("furnace_099.json");
+  bench_setting setting;
+  ASSERT_EQ(setting.solver.method, solver_method::hierarchical);
+  setting.solver.max_edge = 0.5;
+  setting.solver.stop.unshot_fraction = 1e-6;
+  bench_truth truth;
+  truth.exact = exact_kind::furnace;
+  const bench_result r = run_bench(s, setting, truth);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(r.curves.size(), 1u);
+  EXPECT_EQ(r.curves[0].method, "hierarchical");
+  const auto& points = r.curves[0].points;
+  ASSERT_GE(points.size(), 2u);
+  EXPECT_GT(points.front().error, 0.3);  // B = 100 E: the first step's direct light is far from it
+  EXPECT_LT(points.back().error, 1e-4);
+  EXPECT_LE(points.back().unshot_fraction, 1e-6);
+  EXPECT_TRUE(std::isnan(points.back().balance_error));  // no shooting balance to report
+  for (std::size_t i = 1; i < points.size(); ++i) EXPECT_GT(points[i].shots, points[i - 1].shots);
+  EXPECT_GT(r.links, 0u);
+  EXPECT_TRUE(r.links_final);
+  EXPECT_DOUBLE_EQ(r.link_tolerance, setting.solver.link_tolerance);
+  EXPECT_GT(r.first_picture_seconds, 0.0);
+  EXPECT_LE(r.first_picture_seconds, points.front().seconds);
 }
 
 TEST(BenchRun, ReferenceSolversAreExactOnTheFurnace) {
