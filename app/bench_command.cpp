@@ -217,7 +217,7 @@ void add_bench_options(CLI::App& command, bench_options& options) {
           .add_option("--suite", options.suite,
                       "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
                       "(Cornell box); scale: procedural scenes of 10k to 1M triangles, hierarchical vs progressive")
-          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale"}))
+          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical"}))
           ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();

@@ -159,6 +159,23 @@ suite_plan make_suite(const std::string& suite) {
     plan.reference_spp = 1024;
     return plan;
   }
+  if (suite == "hierarchical") {
+    // The hierarchical solver against the baselines where issue-sized
+    // targets are set: the Cornell box at 128 x 128 (against a 4096-spp
+    // reference) over link tolerances, the progressive solver's defaults
+    // and the path tracer; the rho = 0.99 furnace at 0.05 edges to 1e-5.
+    for (double tolerance : {3e-5, 1e-5, 3e-6, 1e-6}) plan.cases.push_back(hierarchical_case("cornell", tolerance, 25.0));
+    plan.cases.push_back(default_case("cornell", solver_method::progressive, 25.0));
+    add_path(plan, "cornell", 20.0);
+    plan.cases.push_back(hierarchical_case("furnace-0.99", solver_settings{}.link_tolerance, 60.0, 1e-5, 0.05));
+    bench_case furnace = default_case("furnace-0.99", solver_method::progressive, 30.0);
+    furnace.settings.max_edge = 0.05;
+    furnace.settings.stop.unshot_fraction = 1e-5;
+    plan.cases.push_back(furnace);
+    plan.picture_size = 128;
+    plan.reference_spp = 4096;
+    return plan;
+  }
   if (suite == "scale") {
     // Procedural scenes from 10k to 1M triangles: how each solver's time to
     // an error grows with the scene. The progressive solver is given 60 s

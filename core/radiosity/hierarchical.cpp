@@ -162,7 +162,7 @@ bool behind(const vec3& n, const vec3& lo, const vec3& hi, const vec3& other_lo,
 }
 
 struct refine_context {
-  hierarchical_solver& solver;
+  const hierarchical_solver& solver;
   const std::vector<rgb>& node_b;
   double tolerance;  // absolute: power units
   tbb::enumerable_thread_specific<std::vector<hierarchy_link>>& out;
@@ -581,7 +581,12 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
     update_residual(solver);
     return true;
   }
-  if (solver.residual_fraction <= refine_below && !solver.progress.links_final) {
+  // Refine once this tolerance is solved far enough, or when iterating no
+  // longer helps (a residual that falls by less than 5% a step).
+  const bool stalled = solver.residual_fraction > 0.95 * solver.progress.previous_residual;
+  solver.progress.previous_residual = solver.residual_fraction;
+  if ((solver.residual_fraction <= refine_below || stalled) && !solver.progress.links_final) {
+    solver.progress.previous_residual = INFINITY;
     solver.progress.tolerance = std::max(final_tolerance, solver.progress.tolerance / solver.params.refine_factor);
     solver.progress.links_final = solver.progress.tolerance <= final_tolerance * (1.0 + 1e-9);
     refine_links(solver, solver.progress.tolerance);
@@ -732,7 +737,7 @@ std::vector<rgb> element_level_solution(const hierarchical_solver& solver) {
   std::atomic<std::uint64_t> rays{0};
   std::atomic<bool> limit{false};
   std::vector<rgb> none;
-  refine_context ctx{const_cast<hierarchical_solver&>(solver), none, 0.0, unused, count, rays, limit};
+  refine_context ctx{solver, none, 0.0, unused, count, rays, limit};
   for (std::size_t i = 0; i < n; ++i) {
     const int ri = solver.tree.leaf_of_element[i];
     for (std::size_t j = 0; j < n; ++j) {

@@ -26,6 +26,7 @@
 // each element's gathered irradiance is divided by its form-factor sum.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -76,7 +77,8 @@ struct hierarchy_progress {
   int refinements = 0;       // link refinement rounds made
   std::uint64_t steps = 0;   // steps made (publications)
   std::uint64_t operator_applications = 0;
-  std::uint64_t jacobi_fallbacks = 0;  // steps where BiCGSTAB did not lower the residual
+  std::uint64_t jacobi_fallbacks = 0;   // steps where BiCGSTAB did not lower the residual
+  double previous_residual = INFINITY;  // the residual fraction at the previous step
   std::uint64_t rays = 0;
   bool closed = false;  // the scene is closed: form factors normalised
   std::uint64_t gather_evaluations = 0;

@@ -121,11 +121,11 @@ namespace {
 void publish_hierarchical(radiosity_state& state) {
   const hierarchical_solver& h = *state.hierarchy;
   const patch_mesh& mesh = *state.mesh;
-  // Once a tolerance is solved (the residual below the point where links
-  // are refined), the final gather: each element's light from the links of
-  // it and its ancestors, the kernel evaluated at the element itself. In
-  // between, the element solution as it stands.
-  if (h.residual_fraction <= h.params.refine_below && final_gather(*state.hierarchy)) {
+  // Once the final links are solved (the residual below the point where
+  // links would be refined), the final gather: each element's light from
+  // the links of it and its ancestors, the kernel evaluated at the element
+  // itself. Before, the element solution as it stands.
+  if (h.progress.links_final && h.residual_fraction <= h.params.refine_below && final_gather(*state.hierarchy)) {
     std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
     for (std::size_t e = 0; e < b.size(); ++e) {
       b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
