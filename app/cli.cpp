@@ -207,7 +207,7 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->default_str(std::string(name_of(o.method)));
   command
       .add_option("--link-tolerance", o.link_tolerance,
-                  "hierarchical: power a link may carry unrefined, as a fraction of the emitted power")
+                  "hierarchical: power a link may carry unrefined, a fraction of the power leaving all surfaces")
       ->check(number_in(0.0, 1.0, true))
       ->capture_default_str();
   std::map<std::string, form_factor_method> methods;
@@ -215,7 +215,9 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
   command.add_option("--method", o.form_factors.method, "form-factor method")
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
       ->default_str(std::string(name_of(o.form_factors.method)));
-  command.add_option("--max-edge", o.max_edge, "longest element edge, scene units (default: diagonal/24)")
+  command
+      .add_option("--max-edge", o.max_edge,
+                  "longest element edge, scene units (default: diagonal/64; progressive: /24)")
       ->check(number_in(0.0, INFINITY, true));
   command.add_option("--until", o.stop.unshot_fraction, "stop when the unshot power fraction falls below this")
       ->check(number_in(0.0, 1.0))
@@ -305,14 +307,15 @@ void add_camera_options(CLI::App& command, camera_options& o) {
 int run_cli(int argc, char** argv) {
   CLI::App app{
       "Bounce: progressive radiosity with a live Gouraud view and two-pass ray-traced stills.\n"
-      "SCENE is a .json scene or a bare .obj; without one, the embedded Cornell box."};
+      "SCENE is a .json scene, a bare .obj, or generated:NAME for a procedural scene (generated:box-room-60,\n"
+      "generated:interior-10k to generated:interior-20m); without one, the embedded Cornell box."};
   app.require_subcommand(0, 1);
 
   std::string scene_path;
   bool as_json = false;
   double info_max_edge = 0.0;
   CLI::App* info = app.add_subcommand("info", "load and validate a scene, print its counts");
-  info->add_option("SCENE", scene_path, "scene file (.json or .obj)");
+  info->add_option("SCENE", scene_path, "scene file (.json or .obj), or generated:NAME (e.g. generated:interior-1m)");
   info->add_flag("--json", as_json, "machine-readable output");
   info->add_option("--max-edge", info_max_edge, "tessellation size for curved surfaces")
       ->check(number_in(0.0, INFINITY, true));
@@ -334,7 +337,7 @@ int run_cli(int argc, char** argv) {
   };
   for (solving_command& c : commands) {
     c.app = app.add_subcommand(c.name, c.help);
-    c.app->add_option("SCENE", c.scene, "scene file (.json or .obj)");
+    c.app->add_option("SCENE", c.scene, "scene file (.json or .obj), or generated:NAME (e.g. generated:interior-1m)");
     add_solver_options(*c.app, c.solver);
     if (c.has_camera) add_camera_options(*c.app, c.camera);
   }
@@ -428,9 +431,12 @@ int run_cli(int argc, char** argv) {
   if (solve->parsed() && (solve_extra.reference || solve_extra.ray_baseline)) {
     // Both measure the progressive solver (against the matrix solution of
     // its own system, or Embree's raw rate on its rays).
+    const std::string option = solve_extra.reference ? "--reference" : "--ray-baseline";
     if (solve->count("--solver") && commands[3].solver.method == solver_method::hierarchical)
-      return usage_error(std::string(solve_extra.reference ? "--reference" : "--ray-baseline") +
-                         " applies to --solver progressive only");
+      return usage_error(option + " applies to --solver progressive only");
+    if (solve->count("--link-tolerance"))
+      return usage_error("--link-tolerance applies to --solver hierarchical only (" + option +
+                         " measures the progressive solver)");
     commands[3].solver.method = solver_method::progressive;
   }
   if (solve->parsed() && solve_extra.ray_baseline &&

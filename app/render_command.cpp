@@ -85,6 +85,8 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
       v.solution = make_snapshot(*state);
       v.history = history;
       v.converged = true;
+      v.settings = solver;
+      v.meshed_elements = mesh.element_count();
       panel_state panel;
       panel.scene_path = s.source;
       panel.solver = solver;

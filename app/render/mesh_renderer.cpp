@@ -35,32 +35,40 @@ bool mesh_renderer::init(std::string& error) {
   return true;
 }
 
-void mesh_renderer::upload(const patch_mesh& mesh) {
-  vertex_count_ = mesh.vertex_count();
+mesh_arrays make_mesh_arrays(const patch_mesh& mesh) {
+  mesh_arrays out;
+  const std::size_t vertex_count = mesh.vertex_count();
+  out.vertex_count = vertex_count;
   // Element size seen from a vertex: the square root of its elements' mean area.
-  std::vector<double> area_sum(vertex_count_, 0.0);
-  std::vector<int> count(vertex_count_, 0);
+  std::vector<double> area_sum(vertex_count, 0.0);
+  std::vector<int> count(vertex_count, 0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     for (int k = 0; k < 3; ++k) {
       area_sum[mesh.elements[e][k]] += mesh.element_areas[e];
       ++count[mesh.elements[e][k]];
     }
-  largest_element_ = 0.0f;
   // Static: position, normal, reflectance, element size, interleaved.
-  std::vector<float> data;
-  data.reserve(vertex_count_ * 10);
-  for (std::size_t v = 0; v < vertex_count_; ++v) {
+  std::vector<float>& data = out.vertices;
+  data.reserve(vertex_count * 10);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.positions[v][k]));
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.normals[v][k]));
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.vertex_rho[v][k]));
     const float size = count[v] ? float(std::sqrt(area_sum[v] / count[v])) : 0.0f;
     data.push_back(size);
-    largest_element_ = std::max(largest_element_, size);
+    out.largest_element = std::max(out.largest_element, size);
   }
-  std::vector<unsigned int> indices;
-  indices.reserve(mesh.element_count() * 3);
+  out.indices.reserve(mesh.element_count() * 3);
   for (const glm::ivec3& t : mesh.elements)
-    for (int k = 0; k < 3; ++k) indices.push_back(unsigned(t[k]));
+    for (int k = 0; k < 3; ++k) out.indices.push_back(unsigned(t[k]));
+  return out;
+}
+
+void mesh_renderer::upload(const mesh_arrays& arrays) {
+  vertex_count_ = arrays.vertex_count;
+  largest_element_ = arrays.largest_element;
+  const std::vector<float>& data = arrays.vertices;
+  const std::vector<unsigned int>& indices = arrays.indices;
   index_count_ = int(indices.size());
 
   glBindVertexArray(vao_);
@@ -89,18 +97,23 @@ void mesh_renderer::upload(const patch_mesh& mesh) {
   glBindVertexArray(0);
 }
 
-void mesh_renderer::update(const radiosity_snapshot& snapshot) {
-  if (snapshot.radiosity.size() != vertex_count_) return;  // a solution of another mesh: nothing to show
+std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot) {
   // The solution stays in double up to here; GL takes float.
-  colours_.resize(2 * vertex_count_);
-  for (std::size_t v = 0; v < vertex_count_; ++v) {
-    colours_[v] = glm::vec3(snapshot.radiosity[v]);
-    colours_[vertex_count_ + v] = glm::vec3(snapshot.unshot_vertex[v]);
+  const std::size_t n = snapshot.radiosity.size();
+  std::vector<glm::vec3> colours(2 * n);
+  for (std::size_t v = 0; v < n; ++v) {
+    colours[v] = glm::vec3(snapshot.radiosity[v]);
+    colours[n + v] = glm::vec3(snapshot.unshot_vertex[v]);
   }
+  return colours;
+}
+
+void mesh_renderer::update(const std::vector<glm::vec3>& colours, const glm::vec3& ambient) {
+  if (colours.size() != 2 * vertex_count_) return;  // a solution of another mesh: nothing to show
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(2 * vertex_count_ * 3 * sizeof(float)), colours_.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(colours.size() * sizeof(glm::vec3)), colours.data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  ambient_ = glm::vec3(snapshot.ambient);
+  ambient_ = ambient;
 }
 
 void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
@@ -26,6 +27,22 @@ struct display_settings {
   bool highlight_back_faces = false;
 };
 
+// The mesh as the renderer's buffers take it: interleaved position,
+// normal, reflectance and element size per vertex, and the triangles.
+// Plain CPU work: the window builds it on the solver's thread, so that a
+// large mesh's arrival costs the UI thread only the copy into GL.
+struct mesh_arrays {
+  std::vector<float> vertices;  // 10 floats a vertex
+  std::vector<unsigned int> indices;
+  std::size_t vertex_count = 0;
+  float largest_element = 0.0f;
+};
+mesh_arrays make_mesh_arrays(const patch_mesh& mesh);
+
+// A solution as the renderer's dynamic buffer takes it: radiosity, then
+// the unshot (false colour) per vertex, in float. CPU work, any thread.
+std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot);
+
 class mesh_renderer {
  public:
   mesh_renderer() = default;
@@ -37,18 +54,20 @@ class mesh_renderer {
   bool init(std::string& error);
 
   // Uploads the mesh once: positions, normals, reflectances, indices.
-  void upload(const patch_mesh& mesh);
+  void upload(const patch_mesh& mesh) { upload(make_mesh_arrays(mesh)); }
+  void upload(const mesh_arrays& arrays);
 
   // Updates the per-vertex radiosity and unshot buffers in place
   // (glBufferSubData), converting to float. The snapshot must belong to the
   // uploaded mesh (the caller uploads a refined mesh first); one of another
   // size is ignored.
-  void update(const radiosity_snapshot& snapshot);
+  void update(const radiosity_snapshot& snapshot) { update(solution_colours(snapshot), glm::vec3(snapshot.ambient)); }
+  // The same from solution_colours (2 x vertices), converted elsewhere.
+  void update(const std::vector<glm::vec3>& colours, const glm::vec3& ambient);
 
   void draw(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings) const;
 
  private:
-  std::vector<glm::vec3> colours_;  // radiosity then unshot per vertex, as uploaded
   unsigned int program_ = 0, wire_program_ = 0;
   unsigned int vao_ = 0;
   unsigned int static_buffer_ = 0, dynamic_buffer_ = 0, index_buffer_ = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <imgui.h>
@@ -19,7 +20,7 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"F", "frame the scene"},
       {"C", "restore the scene's camera"},
       {"Space", "pause / resume the solver"},
-      {"N", "one shot"},
+      {"N", "one shot (hierarchical: one step)"},
       {"R", "restart the solver"},
       {"G", "element wireframe"},
       {"P", "screenshot"},
@@ -62,8 +63,13 @@ std::vector<float> resample_log(const history_type& history, double end, int sam
 
 std::string setting_key(const solver_settings& o) {
   char key[200];
+  if (o.method == solver_method::hierarchical) {
+    std::snprintf(key, sizeof key, "hierarchical, link tolerance %g, edge %g, until %g", o.link_tolerance, o.max_edge,
+                  o.stop.unshot_fraction);
+    return key;
+  }
   const bool hemicube = o.form_factors.method == form_factor_method::hemicube;
-  std::snprintf(key, sizeof key, "%s %d, edge %g, patches %g, until %g",
+  std::snprintf(key, sizeof key, "progressive, %s %d, edge %g, patches %g, until %g",
                 std::string(name_of(o.form_factors.method)).c_str(),
                 hemicube ? o.form_factors.hemicube_resolution : o.form_factors.shadow_rays, o.max_edge, o.patch_edge,
                 o.stop.unshot_fraction);
@@ -75,12 +81,99 @@ std::string setting_key(const solver_settings& o) {
   return text;
 }
 
+panel_actions choose_solver(panel_state& state, solver_method method) {
+  panel_actions act;
+  act.apply_mesh = method != state.solver.method;
+  state.solver.method = method;
+  return act;
+}
+
+solver_settings settings_to_run(const solver_settings& panel_settings) {
+  solver_settings run = panel_settings;
+  if (run.method == solver_method::hierarchical) run.adaptive.enabled = false;
+  return run;
+}
+
+void send_to_worker(const panel_actions& act, const panel_state& state, solver_worker& worker) {
+  if (act.open_scene) worker.load_file(state.scene_path, settings_to_run(state.solver));
+  if (act.apply_mesh) worker.reload(settings_to_run(state.solver));
+  if (act.set_stop) worker.set_criterion(state.solver.stop);
+  if (act.pause) worker.pause();
+  if (act.resume) worker.resume();
+  if (act.step) worker.step();
+  if (act.restart) {
+    worker.restart();
+    worker.resume();
+  }
+}
+
+std::string format_tolerance(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", value);
+  std::string s = text;
+  // "1e-05" -> "1e-5"
+  if (const std::size_t e = s.find("e-0"); e != std::string::npos) s.erase(e + 2, 1);
+  if (const std::size_t e = s.find("e+0"); e != std::string::npos) s.erase(e + 2, 1);
+  return s;
+}
+
+std::vector<std::string> statistics_lines(const worker_view& view, double frame_ms) {
+  std::vector<std::string> lines;
+  if (!view.solution || !view.mesh) return lines;
+  auto line = [&lines](const char* format, auto... values) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, values...);
+    lines.emplace_back(text);
+  };
+  const radiosity_stats& st = view.solution->stats;
+  const bool hierarchical = view.settings.method == solver_method::hierarchical;
+  line("%s: %s", std::string(name_of(view.settings.method)).c_str(),
+       view.converged ? "converged"
+       : view.running ? "solving"
+                      : "paused");
+  const double seconds = std::max(st.seconds, 1e-9);
+  if (hierarchical) {
+    line("elements %zu, vertices %zu", view.mesh->element_count(), view.mesh->vertex_count());
+    line("steps %llu, residual %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
+    if (st.shots == 0) {
+      line("links: none yet (the first step makes them)");
+    } else {
+      // 16 bytes a link (hierarchy_link).
+      line("links %llu (%.1f MiB)", static_cast<unsigned long long>(st.links),
+           double(st.links) * 16.0 / (1024.0 * 1024.0));
+      const std::string now = format_tolerance(st.link_tolerance);
+      if (st.links_final)
+        line("link tolerance %s, final", now.c_str());
+      else
+        line("link tolerance %s, refining to %s", now.c_str(), format_tolerance(view.settings.link_tolerance).c_str());
+    }
+    line("%.2f s, %.2f Mrays/s", st.seconds, double(st.rays) / seconds * 1e-6);
+  } else {
+    line("elements %zu, vertices %zu, patches %zu", view.mesh->element_count(), view.mesh->vertex_count(),
+         view.mesh->patch_count());
+    if (view.meshed_elements != view.mesh->element_count())
+      line("adaptive: %zu elements as meshed, %llu refinement passes since", view.meshed_elements,
+           static_cast<unsigned long long>(st.refinements));
+    line("shots %llu, unshot %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
+    line("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.shots) / seconds, double(st.rays) / seconds * 1e-6,
+         st.seconds);
+  }
+  line("frame %.1f ms", frame_ms);
+  return lines;
+}
+
 panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still,
                          const error_status& errors) {
   panel_actions act;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Bounce");
+  // Widgets leave room on their right for the longest label, so that no
+  // label is cut off however narrow the panel is made.
+  float label_room = 0.0f;
+  for (const char* label : {"stop at residual 10^", "samples per pixel", "max edge (0: auto)", "exposure (stops)"})
+    label_room = std::max(label_room, ImGui::CalcTextSize(label).x);
+  ImGui::PushItemWidth(-(label_room + ImGui::GetStyle().ItemInnerSpacing.x));
 
   if (ImGui::CollapsingHeader("Scene")) {
     char path[1024];
@@ -101,38 +194,65 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
   if (!view.error.empty()) ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "%s", view.error.c_str());
 
   if (ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
-    float max_edge = float(state.solver.max_edge);
-    ImGui::InputFloat("max edge (0: auto)", &max_edge, 0, 0, "%.4g");
-    state.solver.max_edge = std::max(0.0f, max_edge);
-    form_factor_params& ff = state.solver.form_factors;
-    if (ImGui::BeginCombo("form factors", std::string(name_of(ff.method)).c_str())) {
-      for (const auto& m : form_factor_method_names())
-        if (ImGui::Selectable(std::string(m.name).c_str(), m.method == ff.method)) ff.method = m.method;
+    solver_settings& solver = state.solver;
+    // A new solver restarts at once (the mesh is kept when it meshes the
+    // same); the other settings wait for Apply.
+    if (ImGui::BeginCombo("solver", std::string(name_of(solver.method)).c_str())) {
+      for (const auto& m : solver_method_names())
+        if (ImGui::Selectable(std::string(m.name).c_str(), m.method == solver.method))
+          act.apply_mesh |= choose_solver(state, m.method).apply_mesh;
       ImGui::EndCombo();
     }
-    if (ff.method == form_factor_method::raycast)
-      ImGui::SliderInt("shadow rays", &ff.shadow_rays, 1, 64);
-    else
-      ImGui::SliderInt("hemicube", &ff.hemicube_resolution, 16, 512);
-    stop_criterion& stop = state.solver.stop;
+    const bool hierarchical = solver.method == solver_method::hierarchical;
+    float max_edge = float(solver.max_edge);
+    ImGui::InputFloat("max edge (0: auto)", &max_edge, 0, 0, "%.4g");
+    solver.max_edge = std::max(0.0f, max_edge);
+    if (hierarchical) {
+      // A log scale from 1e-8 to 1e-2 of the emitted power, two digits.
+      float exponent = float(std::log10(std::clamp(solver.link_tolerance, 1e-8, 1e-2)));
+      const std::string shown = format_tolerance(solver.link_tolerance);
+      if (ImGui::SliderFloat("link tolerance", &exponent, -8.0f, -2.0f, shown.c_str(),
+                             ImGuiSliderFlags_NoRoundToFormat))
+        solver.link_tolerance = std::strtod(format_tolerance(std::pow(10.0, double(exponent))).c_str(), nullptr);
+      // Restarts when the slider is let go, not at every value passed.
+      if (ImGui::IsItemDeactivatedAfterEdit()) act.apply_mesh = true;
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("power a link may carry unrefined, a fraction of the emitted power: lower is finer");
+    } else {
+      form_factor_params& ff = solver.form_factors;
+      if (ImGui::BeginCombo("form factors", std::string(name_of(ff.method)).c_str())) {
+        for (const auto& m : form_factor_method_names())
+          if (ImGui::Selectable(std::string(m.name).c_str(), m.method == ff.method)) ff.method = m.method;
+        ImGui::EndCombo();
+      }
+      if (ff.method == form_factor_method::raycast)
+        ImGui::SliderInt("shadow rays", &ff.shadow_rays, 1, 64);
+      else
+        ImGui::SliderInt("hemicube", &ff.hemicube_resolution, 16, 512);
+    }
+    stop_criterion& stop = solver.stop;
     float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
     // Applies at once; the value is left as typed until the slider moves.
-    if (ImGui::SliderFloat("stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f")) {
+    if (ImGui::SliderFloat(hierarchical ? "stop at residual 10^" : "stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f")) {
       stop.unshot_fraction = std::pow(10.0, double(until));
       act.set_stop = true;
     }
-    // Adaptive meshing: refine where the light changes (applies on re-mesh).
-    adaptive_params& adaptive = state.solver.adaptive;
-    ImGui::Checkbox("adaptive meshing", &adaptive.enabled);
-    if (adaptive.enabled) {
-      float tolerance = float(adaptive.tolerance);
-      ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-      adaptive.tolerance = double(tolerance);
-      float min_edge = float(adaptive.min_edge);
-      ImGui::InputFloat("min edge (0: max edge / 8)", &min_edge, 0, 0, "%.4g");
-      adaptive.min_edge = std::max(0.0f, min_edge);
+    if (!hierarchical) {
+      // Adaptive meshing: refine where the light changes (applies on re-mesh).
+      adaptive_params& adaptive = solver.adaptive;
+      ImGui::Checkbox("adaptive meshing", &adaptive.enabled);
+      if (adaptive.enabled) {
+        float tolerance = float(adaptive.tolerance);
+        ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        adaptive.tolerance = double(tolerance);
+        float min_edge = float(adaptive.min_edge);
+        ImGui::InputFloat("min edge (0: auto)", &min_edge, 0, 0, "%.4g");
+        adaptive.min_edge = std::max(0.0f, min_edge);
+      }
     }
-    if (ImGui::Button("Apply (re-mesh)")) act.apply_mesh = true;
+    if (ImGui::Button("Apply")) act.apply_mesh = true;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("solve again with these settings (re-meshed if they change the mesh)");
     ImGui::SameLine();
     if (view.running) {
       if (ImGui::Button("Pause")) act.pause = true;
@@ -146,18 +266,8 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
   }
 
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen) && view.solution && view.mesh) {
-    const radiosity_stats& st = view.solution->stats;
-    ImGui::Text("%s", view.converged ? "converged" : view.running ? "solving" : "paused");
-    ImGui::Text("elements %zu, vertices %zu, patches %zu", view.mesh->element_count(), view.mesh->vertex_count(),
-                view.mesh->patch_count());
-    if (view.meshed_elements != view.mesh->element_count())
-      ImGui::Text("adaptive: %zu elements as meshed, %llu refinement passes since", view.meshed_elements,
-                  static_cast<unsigned long long>(st.refinements));
-    ImGui::Text("shots %llu, unshot %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
-    const double seconds = std::max(st.seconds, 1e-9);
-    ImGui::Text("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.shots) / seconds, double(st.rays) / seconds * 1e-6,
-                st.seconds);
-    ImGui::Text("frame %.1f ms", frame_ms);
+    for (const std::string& text : statistics_lines(view, frame_ms)) ImGui::TextWrapped("%s", text.c_str());
+    const bool hierarchical = view.settings.method == solver_method::hierarchical;
     // Unshot power and, against a reference, the error of the picture, on
     // one time axis.
     const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
@@ -167,7 +277,8 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     const std::vector<float> plot =
         resample_log(view.history, end, 120, [](const convergence_point& p) { return p.unshot_fraction; });
     if (!plot.empty())
-      ImGui::PlotLines("log10 unshot", plot.data(), int(plot.size()), 0, label, -8.0f, 0.0f, ImVec2(0, 80));
+      ImGui::PlotLines(hierarchical ? "log10 residual" : "log10 unshot", plot.data(), int(plot.size()), 0, label, -8.0f,
+                       0.0f, ImVec2(0, 80));
     const std::vector<float> error_plot =
         resample_log(errors.history, end, 120, [](const error_point& p) { return p.error; });
     if (!error_plot.empty())
@@ -181,14 +292,14 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     }
     ImGui::TextWrapped("%s", errors.summary.c_str());
     if (!errors.history.empty())
-      ImGui::Text("error now %.2f%% (relative RMSE of the picture)", 100.0 * errors.history.back().error);
+      ImGui::TextWrapped("error now %.2f%% (relative RMSE of the picture)", 100.0 * errors.history.back().error);
     if (errors.last) {
       if (std::isnan(errors.last->error))
-        ImGui::Text("last run with these settings: %.2f s to %.3g%% unshot", errors.last->seconds,
-                    100.0 * errors.last->unshot_fraction);
+        ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot", errors.last->seconds,
+                           100.0 * errors.last->unshot_fraction);
       else
-        ImGui::Text("last run with these settings: %.2f s to %.3g%% unshot, error %.2f%%", errors.last->seconds,
-                    100.0 * errors.last->unshot_fraction, 100.0 * errors.last->error);
+        ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot, error %.2f%%", errors.last->seconds,
+                           100.0 * errors.last->unshot_fraction, 100.0 * errors.last->error);
     }
   }
 
@@ -238,6 +349,7 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
   }
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   if (ImGui::Button("Help (H)")) state.show_help = true;
+  ImGui::PopItemWidth();
   ImGui::End();
 
   if (still.texture) {

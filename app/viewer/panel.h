@@ -47,7 +47,9 @@ struct panel_state {
 
 struct panel_actions {
   bool open_scene = false;  // load panel_state::scene_path
-  bool apply_mesh = false;  // re-mesh the current scene with the panel's solver settings
+  // Solve the current scene again with the panel's solver settings
+  // (re-meshed if they mesh it otherwise): Apply, a new solver or link tolerance.
+  bool apply_mesh = false;
   bool pause = false, resume = false, step = false, restart = false;
   bool screenshot = false;
   bool frame_scene = false, reset_camera = false;
@@ -61,9 +63,30 @@ struct panel_actions {
 panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still = {},
                          const error_status& errors = {});
 
-// The solver setting a run is remembered under: method, its parameter,
-// element size and stopping point.
+// The solver setting a run is remembered under: solver, its method and
+// parameter, element size and stopping point.
 std::string setting_key(const solver_settings& settings);
+
+// The panel's solver choice: the settings take the solver, and a solver
+// other than the one chosen restarts the solve with it (apply_mesh).
+panel_actions choose_solver(panel_state& state, solver_method method);
+
+// The settings a run is started with from the panel's: the hierarchical
+// solver meshes once, so adaptive meshing (progressive only) is left out;
+// the panel keeps it for when the progressive solver is chosen again.
+solver_settings settings_to_run(const solver_settings& panel_settings);
+
+// What the actions ask of the solver (open, apply, stopping point, pause,
+// resume, step, restart), sent to the worker as the window does.
+void send_to_worker(const panel_actions& act, const panel_state& state, solver_worker& worker);
+
+// The statistics of the run shown, one line each: the hierarchical
+// solver's steps, residual and links, or the progressive solver's shots
+// and unshot power.
+std::vector<std::string> statistics_lines(const worker_view& view, double frame_ms);
+
+// A tolerance as the panel shows it: "1e-5", "2.5e-6".
+std::string format_tolerance(double value);
 
 // The keyboard shortcuts, shown in the help popup and handled by the window.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "image/image.h"
 #include "viewer.h"
@@ -11,7 +12,13 @@ namespace bounce {
 void frame_timing::frame(int index, double ms) {
   if (index <= 10) return;  // past start-up
   frame_ms_sum += ms;
+  frame_ms_max = std::max(frame_ms_max, ms);
   ++frames;
+}
+
+void frame_timing::mesh_upload(double ms) {
+  mesh_upload_ms_max = std::max(mesh_upload_ms_max, ms);
+  ++mesh_uploads;
 }
 
 void frame_timing::upload(double ms) {
@@ -64,11 +71,15 @@ void scripted_run::report(const error_status& errors, const frame_timing& timing
   }
   if (timing.frames > 0)
     std::printf(
-        "view: %dx%d, %zu triangles (%zu as meshed), %d frames: %.2f ms per frame (%.1f fps); radiosity upload "
-        "%.3f ms (mean of %d, largest %.2f ms)\n",
+        "view: %dx%d, %zu triangles (%zu as meshed), %d frames: %.2f ms per frame (%.1f fps), worst %.1f ms; "
+        "radiosity upload %.3f ms (mean of %d, largest %.2f ms); mesh upload %.1f ms (largest of %d)\n",
         width, height, triangles, meshed_triangles, timing.frames, timing.frame_ms_sum / timing.frames,
-        1000.0 * timing.frames / timing.frame_ms_sum, timing.uploads ? timing.upload_ms_sum / timing.uploads : 0.0,
-        timing.uploads, timing.upload_ms_max);
+        1000.0 * timing.frames / timing.frame_ms_sum, timing.frame_ms_max,
+        timing.uploads ? timing.upload_ms_sum / timing.uploads : 0.0, timing.uploads, timing.upload_ms_max,
+        timing.mesh_upload_ms_max, timing.mesh_uploads);
+  auto when = [](double ms) { return ms < 0.0 ? std::string("none") : std::to_string(int(ms + 0.5)) + " ms"; };
+  std::printf("view: after the window opened, first picture of the mesh %s, first lit picture %s\n",
+              when(timing.first_mesh_ms).c_str(), when(timing.first_lit_ms).c_str());
 }
 
 }  // namespace bounce

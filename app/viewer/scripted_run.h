@@ -16,10 +16,16 @@ struct viewer_options;
 
 // Frame and upload times of the window, reported after a scripted run.
 struct frame_timing {
-  double frame_ms_sum = 0.0, upload_ms_sum = 0.0, upload_ms_max = 0.0;
+  double frame_ms_sum = 0.0, frame_ms_max = 0.0, upload_ms_sum = 0.0, upload_ms_max = 0.0;
   int frames = 0, uploads = 0;
+  double mesh_upload_ms_max = 0.0;  // a new mesh (scene, density, refinement pass)
+  int mesh_uploads = 0;
+  // From the window's start (the scene is built or read before): the first
+  // frame with the mesh, and the first with light carried by the solver.
+  double first_mesh_ms = -1.0, first_lit_ms = -1.0;
   void frame(int index, double ms);  // start-up frames (mesh upload, font atlas) are left out
   void upload(double ms);
+  void mesh_upload(double ms);
 };
 
 class scripted_run {

@@ -5,9 +5,18 @@
 #include "scene/scene_io.h"
 
 namespace bounce {
+namespace {
+
+// Whether two sets of mesher parameters build the same mesh.
+bool same_meshing(const mesher_params& a, const mesher_params& b) {
+  return a.max_edge == b.max_edge && a.crease_angle_degrees == b.crease_angle_degrees && a.patch_edge == b.patch_edge &&
+         a.a_priori_min_edge == b.a_priori_min_edge;
+}
+
+}  // namespace
 
 struct solver_worker::command {
-  enum class kind { load, load_file, pause, resume, step, restart, criterion } what;
+  enum class kind { load, load_file, reload, pause, resume, step, restart, criterion } what;
   scene s;
   std::string path;
   solver_settings settings;
@@ -63,6 +72,13 @@ void solver_worker::load_file(const std::string& path, const solver_settings& se
   enqueue(std::move(c));
 }
 
+void solver_worker::reload(const solver_settings& settings) {
+  auto c = std::make_unique<command>();
+  c->what = command::kind::reload;
+  c->settings = settings;
+  enqueue(std::move(c));
+}
+
 void solver_worker::send(int what) {
   auto c = std::make_unique<command>();
   c->what = static_cast<command::kind>(what);
@@ -106,21 +122,40 @@ void solver_worker::handle(command& c) {
       c.s = std::move(s);
       [[fallthrough]];
     }
+    case kind::reload:
     case kind::load: {
-      auto s = std::make_shared<const scene>(std::move(c.s));
-      auto mesh = std::make_shared<patch_mesh>();
-      std::string error;
-      if (!make_patch_mesh(*s, mesher_params_for(c.settings, *s), *mesh, error)) {
-        error_ = s->source + ": " + error;
-        return;
+      if (c.what == kind::reload && !scene_) return;  // nothing loaded yet
+      // A reload keeps the scene (no copy) and, when the new settings mesh
+      // it as before, the mesh: a new solver or tolerance only restarts.
+      auto s = c.what == kind::reload ? scene_ : std::make_shared<const scene>(std::move(c.s));
+      const mesher_params meshing = mesher_params_for(c.settings, *s);
+      const bool same_mesh = c.what == kind::reload && mesh_ && same_meshing(meshing, mesher_params_for(settings_, *s));
+      std::shared_ptr<const patch_mesh> mesh = mesh_;
+      if (!same_mesh) {
+        // The old run (its links may take hundreds of MiB) goes before the
+        // new mesh is built.
+        if (c.what == kind::reload) state_.reset();
+        auto fresh = std::make_shared<patch_mesh>();
+        std::string error;
+        if (!make_patch_mesh(*s, meshing, *fresh, error)) {
+          error_ = s->source + ": " + error;
+          if (!state_ && mesh_) {  // the previous run starts again
+            state_ = make_radiosity_state(*scene_, *mesh_, radiosity_params_for(settings_));
+            ++run_;
+            history_.clear();
+            exhausted_ = false;
+          }
+          return;
+        }
+        mesh = std::move(fresh);
       }
-      // The old state refers to the old mesh: replace both together.
       state_.reset();
       scene_ = s;
       mesh_ = mesh;
+      settings_ = c.settings;
       state_ = make_radiosity_state(*scene_, *mesh_, radiosity_params_for(c.settings));
       criterion_ = c.settings.stop;
-      ++mesh_version_;
+      if (!same_mesh) ++mesh_version_;
       ++run_;
       history_.clear();
       error_.clear();
@@ -161,7 +196,18 @@ void solver_worker::publish() {
   v->source = scene_;
   v->mesh = state_ && state_->refined_mesh ? state_->refined_mesh : mesh_;  // adaptive meshing refines it
   v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
-  if (state_) v->solution = make_snapshot(*state_);
+  v->settings = settings_;
+  v->settings.stop = criterion_;
+  if (v->mesh != arrays_mesh_) {  // once per mesh: a large one takes a while
+    mesh_arrays_.reset();
+    if (v->mesh) mesh_arrays_ = std::make_shared<const gl::mesh_arrays>(gl::make_mesh_arrays(*v->mesh));
+    arrays_mesh_ = v->mesh;
+  }
+  v->mesh_arrays = mesh_arrays_;
+  if (state_) {
+    v->solution = make_snapshot(*state_);
+    v->colours = std::make_shared<const std::vector<glm::vec3>>(gl::solution_colours(*v->solution));
+  }
   v->history = history_;
   unpublished_ = false;
   v->error = error_;

@@ -17,6 +17,7 @@
 #include <tbb/task_arena.h>
 
 #include "mesh/patch_mesh.h"
+#include "mesh_renderer.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/solver_settings.h"
 #include "scene/scene.h"
@@ -59,11 +60,16 @@ struct worker_view {
   // changes: the one signal that a mesh is new.
   std::shared_ptr<const patch_mesh> mesh;
   std::size_t meshed_elements = 0;  // elements as the mesher built them
+  solver_settings settings;         // the run's: which solver, its parameters, the stopping point
   std::shared_ptr<const radiosity_snapshot> solution;
-  convergence_log history;  // unshot fraction against time since the (re)start
-  bool running = false;     // shooting now
-  bool converged = false;   // the stopping criterion holds (or nothing is left)
-  std::string error;        // last failure (bad scene, mesh too large); the previous scene stays
+  // The mesh and the solution as the renderer's buffers take them, built
+  // here on the worker: the UI thread only copies them into GL.
+  std::shared_ptr<const gl::mesh_arrays> mesh_arrays;     // of `mesh`
+  std::shared_ptr<const std::vector<glm::vec3>> colours;  // of `solution`
+  convergence_log history;                                // unshot fraction against time since the (re)start
+  bool running = false;                                   // shooting now
+  bool converged = false;                                 // the stopping criterion holds (or nothing is left)
+  std::string error;  // last failure (bad scene, mesh too large); the previous scene stays
 };
 
 class solver_worker {
@@ -77,6 +83,10 @@ class solver_worker {
   void load(scene s, const solver_settings& settings);
   // Loads a scene file (path) on the worker; errors arrive in the view.
   void load_file(const std::string& path, const solver_settings& settings);
+  // Solves the current scene again with other settings (another solver,
+  // tolerance or mesh density): re-meshed on the worker, or the same mesh
+  // kept when the settings mesh it the same way.
+  void reload(const solver_settings& settings);
   void pause();
   void resume();
   void step();     // one shot, then paused
@@ -113,6 +123,7 @@ class solver_worker {
   std::shared_ptr<const scene> scene_;
   std::shared_ptr<const patch_mesh> mesh_;
   std::unique_ptr<radiosity_state> state_;
+  solver_settings settings_;
   stop_criterion criterion_;
   bool paused_ = false;
   bool single_step_ = false;
@@ -126,6 +137,8 @@ class solver_worker {
   std::atomic<bool> idle_{true};
 
   std::shared_ptr<const worker_view> view_;
+  std::shared_ptr<const patch_mesh> arrays_mesh_;  // the mesh mesh_arrays_ were built from
+  std::shared_ptr<const gl::mesh_arrays> mesh_arrays_;
   tbb::task_arena arena_{int(std::max(1u, std::thread::hardware_concurrency() - 1))};
 };
 

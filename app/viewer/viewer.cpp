@@ -97,8 +97,15 @@ class viewer_app {
   // panel as asked. Returns the panel's actions.
   panel_actions draw(const worker_view& view, int frame, panel_actions& keys);
   void carry_out(const panel_actions& act, const worker_view& view);
-  bounds3 bounds(const worker_view& view) const {
-    return view.source ? scene_bounds(*view.source) : scene_bounds(initial_);
+  // The shown scene's bounds, found once per scene: a scan of every
+  // vertex, too slow to repeat every frame on a large scene.
+  const bounds3& bounds(const worker_view& view) {
+    if (!bounds_found_ || view.source != bounds_source_) {
+      bounds_ = view.source ? scene_bounds(*view.source) : scene_bounds(initial_);
+      bounds_source_ = view.source;
+      bounds_found_ = true;
+    }
+    return bounds_;
   }
 
   GLFWwindow* window_;
@@ -115,6 +122,9 @@ class viewer_app {
   pointer_state pointer_;
   std::shared_ptr<const patch_mesh> uploaded_mesh_;
   std::shared_ptr<const scene> shown_source_;
+  std::shared_ptr<const scene> bounds_source_;
+  bounds3 bounds_;
+  bool bounds_found_ = false;
   std::shared_ptr<const radiosity_snapshot> uploaded_solution_;  // a snapshot is new when it is another object
   std::string shown_error_;
   double frame_ms_ = 0.0;
@@ -130,6 +140,7 @@ class viewer_app {
 
   scripted_run script_;
   frame_timing timing_;
+  clock_type::time_point started_ = clock_type::now();
 };
 
 viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& initial, const solver_settings& solver,
@@ -167,7 +178,13 @@ viewer_app::~viewer_app() {
 // then only the radiosity buffer changes.
 void viewer_app::take_published_work(const worker_view& view) {
   if (view.mesh && view.mesh != uploaded_mesh_) {
-    renderer_.upload(*view.mesh);
+    const auto start = clock_type::now();
+    if (view.mesh_arrays)
+      renderer_.upload(*view.mesh_arrays);
+    else
+      renderer_.upload(*view.mesh);
+    glFinish();
+    timing_.mesh_upload(milliseconds_since(start));
     uploaded_mesh_ = view.mesh;
     uploaded_solution_.reset();
   }
@@ -180,7 +197,10 @@ void viewer_app::take_published_work(const worker_view& view) {
   }
   if (view.solution && view.solution != uploaded_solution_) {
     const auto start = clock_type::now();
-    renderer_.update(*view.solution);
+    if (view.colours)
+      renderer_.update(*view.colours, glm::vec3(view.solution->ambient));
+    else
+      renderer_.update(*view.solution);
     glFinish();  // llvmpipe copies on the CPU: finish so the time is the upload's
     timing_.upload(milliseconds_since(start));
     uploaded_solution_ = view.solution;
@@ -210,8 +230,10 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  // A run is recorded under its own settings, and the panel shows the last
+  // run made with the settings it holds.
   const std::string setting = setting_key(panel_.solver);
-  errors_.observe(view, setting);
+  errors_.observe(view, setting_key(view.settings));
   const error_status error_shown = errors_.status(setting);
   const panel_actions act = draw_panel(panel_, view, frame_ms_, still_shown_, error_shown);
   ImGui::Render();
@@ -252,16 +274,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
 }
 
 void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
-  if (act.open_scene) worker_.load_file(panel_.scene_path, panel_.solver);
-  if (act.apply_mesh && view.source) worker_.load(*view.source, panel_.solver);
-  if (act.set_stop) worker_.set_criterion(panel_.solver.stop);
-  if (act.pause) worker_.pause();
-  if (act.resume) worker_.resume();
-  if (act.step) worker_.step();
-  if (act.restart) {
-    worker_.restart();
-    worker_.resume();
-  }
+  send_to_worker(act, panel_, worker_);  // a reload keeps the scene on the worker: no copy here
   if (act.frame_scene) orbit_frame(orbit_, bounds(view), scene_camera_.fov_y_degrees);
   if (act.reset_camera) orbit_ = orbit_from_camera(scene_camera_);
   if (act.trace_still && view.source && !still_.running()) {
@@ -322,6 +335,9 @@ int viewer_app::run() {
     glfwGetFramebufferSize(window_, &width_, &height_);
     const panel_actions act = draw(*view, frame, keys);
     glfwSwapBuffers(window_);
+    if (uploaded_mesh_ && timing_.first_mesh_ms < 0.0) timing_.first_mesh_ms = milliseconds_since(started_);
+    if (uploaded_solution_ && uploaded_solution_->stats.shots > 0 && timing_.first_lit_ms < 0.0)
+      timing_.first_lit_ms = milliseconds_since(started_);
     carry_out(either(act, keys), *view);
   }
   return code_;

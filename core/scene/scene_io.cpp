@@ -15,6 +15,7 @@
 
 #include "base/embedded.h"
 #include "scene/obj_io.h"
+#include "scene/procedural.h"
 #include "scene/scene_validate.h"
 #include "scene/tessellate.h"
 
@@ -534,6 +535,11 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
       report.warnings = std::move(obj.warnings);
       report.dropped_faces = obj.dropped_faces;
       s.view = fit_camera(s);
+    } else if (path.starts_with(generated_prefix)) {
+      std::string error;
+      if (!make_procedural_scene(std::string_view(path).substr(generated_prefix.size()), s, error))
+        throw load_error(path + ": " + error);
+      s.source = path;  // so that reopening it (the panel) builds it again
     } else if (ends_with_icase(path, ".json")) {
       std::optional<std::string> text = read_file(path);
       if (!text) throw load_error(path + ": cannot read file");
@@ -541,7 +547,7 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
       scene_builder builder{json_reader{path}, s, report, {}};
       builder.read(doc);
     } else {
-      throw load_error(path + ": unknown scene format (expected .json or .obj)");
+      throw load_error(path + ": unknown scene format (expected .json, .obj or generated:NAME)");
     }
     drop_degenerate_faces(s, report);
     if (s.surfaces.empty()) throw load_error(path + ": no surfaces left after dropping degenerate faces");

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scene/scene.h"
@@ -21,8 +22,12 @@ struct load_report {
   std::size_t dropped_faces = 0;      // degenerate faces removed
 };
 
-// Loads a .json scene or a bare .obj (its camera fitted to the geometry) and
-// validates it. On failure returns false, fills report.error with a message
+// Paths "generated:NAME" build a procedural scene (procedural.h) by name,
+// e.g. "generated:interior-1m"; nothing is read from disk.
+inline constexpr std::string_view generated_prefix = "generated:";
+
+// Loads a .json scene, a bare .obj (its camera fitted to the geometry) or a
+// procedural scene ("generated:NAME") and validates it. On failure returns false, fills report.error with a message
 // naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
 

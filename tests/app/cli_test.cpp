@@ -134,6 +134,27 @@ TEST(Cli, InfoOnEveryShippedScene) {
   EXPECT_EQ(whitted["point_lights"], 1);
 }
 
+TEST(Cli, GeneratedScenesByName) {
+  run_result r = run("info --json generated:interior-10k");
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["scene"], "generated:interior-10k");
+  EXPECT_NEAR(j["triangles"].get<double>(), 10'000.0, 100.0);
+  EXPECT_GT(j["emitting_surfaces"].get<int>(), 0);
+  scratch_dir dir;
+  r = run("render generated:box-room-2 --size 16x16 --max-shots 3 --out " + dir.path("box.png"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("box.png")));
+  // An unknown name is an input error naming it, like a missing file.
+  r = run("render generated:box-room-0 --size 16x16 --out " + dir.path("no.png"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("generated:box-room-0: procedural scene 'box-room-0'"), std::string::npos) << r.err;
+  r = run("info generated:palace");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("unknown procedural scene 'palace'"), std::string::npos) << r.err;
+  EXPECT_NE(run("info --help").out.find("generated:NAME"), std::string::npos);
+}
+
 TEST(Cli, FinerMaxEdgeMakesMoreTriangles) {
   std::string path = source_path("assets/teapot/teapot.json");
   nlohmann::json coarse = nlohmann::json::parse(run("info --json --max-edge 1 " + path).out);
@@ -285,6 +306,13 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"trace --spp 4 --adaptive-spp 4", "--adaptive-spp 4 must be more than --spp 4"},
       {"trace --integrator path --spp 8 --adaptive-spp 2", "--adaptive-spp 2 must be more than --spp 8"},
       {"bench --report-only --suite full", "--suite excludes --report-only"},
+      {"solve --solver hierarchical --adaptive", "--adaptive applies to --solver progressive only"},
+      {"render --solver hierarchical --rays 4 --patch-edge 50",
+       "--patch-edge, --rays apply to --solver progressive only"},
+      {"solve --solver progressive --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
+      {"trace --adaptive --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
+      {"solve --solver hierarchical --reference", "--reference applies to --solver progressive only"},
+      {"solve --reference --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
   };
   for (const auto& [args, message] : cases) {
     run_result r = run(args);

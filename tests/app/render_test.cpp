@@ -454,6 +454,39 @@ TEST(Window, PlotsTheErrorAgainstAPathTracedReference) {
   EXPECT_LT(e1, 0.3);
 }
 
+TEST(Window, OpensAGeneratedSceneAndReportsItsTimes) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  scratch_dir dir;
+  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
+                              " view generated:box-room-3 --frames 30 --exit >" + dir.path("out.txt") + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream out(dir.path("out.txt"));
+  const std::string text((std::istreambuf_iterator<char>(out)), {});
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << text;
+  // "... N frames: M ms per frame (F fps), worst W ms; ..." and when the
+  // mesh and the first light were shown.
+  double mean = 0, fps = 0, worst = 0;
+  int frames = 0;
+  const std::size_t at = text.find(" frames: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  ASSERT_EQ(std::sscanf(text.c_str() + text.rfind(", ", at) + 2, "%d frames: %lf ms per frame (%lf fps), worst %lf ms",
+                        &frames, &mean, &fps, &worst),
+            4)
+      << text;
+  EXPECT_EQ(frames, 20);  // the first 10 (start-up) left out
+  EXPECT_GE(worst, mean);
+  double mesh_ms = -1, lit_ms = -1;
+  const std::size_t first = text.find("first picture of the mesh ");
+  ASSERT_NE(first, std::string::npos) << text;
+  ASSERT_EQ(std::sscanf(text.c_str() + first, "first picture of the mesh %lf ms, first lit picture %lf ms", &mesh_ms,
+                        &lit_ms),
+            2)
+      << text;
+  EXPECT_GT(mesh_ms, 0.0);
+  EXPECT_GE(lit_ms, mesh_ms);
+}
+
 TEST(HeadlessImages, NoArgumentsRendersTheDefaultScene) {
   scratch_dir dir;
   const std::string command = "cd " + dir.root.string() + " && env -u DISPLAY " + BOUNCE_EXE + " >out.txt 2>&1";

@@ -132,6 +132,33 @@ TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
   EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
 }
 
+// The mesh and the solution come converted for the renderer, off the UI
+// thread: the arrays once per mesh, the colours with every solution.
+TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
+  solver_worker worker;
+  worker.load(cornell(), coarse(0.05));
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ASSERT_TRUE(view->mesh && view->solution && view->mesh_arrays && view->colours);
+  const patch_mesh& mesh = *view->mesh;
+  EXPECT_EQ(view->mesh_arrays->vertex_count, mesh.vertex_count());
+  ASSERT_EQ(view->mesh_arrays->vertices.size(), 10 * mesh.vertex_count());
+  ASSERT_EQ(view->mesh_arrays->indices.size(), 3 * mesh.element_count());
+  EXPECT_EQ(view->mesh_arrays->indices[4], unsigned(mesh.elements[1][1]));
+  EXPECT_EQ(view->mesh_arrays->vertices[10 * 7 + 1], float(mesh.positions[7].y));
+  ASSERT_EQ(view->colours->size(), 2 * mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    ASSERT_EQ((*view->colours)[v], glm::vec3(view->solution->radiosity[v])) << v;
+    ASSERT_EQ((*view->colours)[mesh.vertex_count() + v], glm::vec3(view->solution->unshot_vertex[v])) << v;
+  }
+  // A restart publishes a new solution with the same mesh: the arrays are kept.
+  worker.restart();
+  worker.wait_idle();
+  const auto restarted = worker.latest();
+  EXPECT_EQ(restarted->mesh_arrays, view->mesh_arrays);
+  EXPECT_NE(restarted->colours, view->colours);
+}
+
 // The history is shared between published views, not copied: a view keeps
 // the points it was published with while the worker appends.
 TEST(ConvergenceLog, AppendsAcrossBlocksAndSharesThem) {

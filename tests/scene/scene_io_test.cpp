@@ -9,6 +9,7 @@
 #include <stb/stb_image_write.h>
 
 #include "base/embedded.h"
+#include "scene/procedural.h"
 #include "scene/scene_info.h"
 #include "scene/scene_io.h"
 #include "scene/scene_validate.h"
@@ -307,6 +308,22 @@ TEST(SceneIo, JsonRoundTripOfEveryShape) {
   EXPECT_EQ(s.lights[0].intensity, rgb(5.0));
 }
 
+TEST(SceneIo, GeneratedNameBuildsTheProceduralScene) {
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load_scene("generated:box-room-3", s, report)) << report.error;
+  EXPECT_TRUE(report.warnings.empty());
+  EXPECT_EQ(s.source, "generated:box-room-3");  // reopening it builds it again
+  EXPECT_EQ(triangle_count(s), box_room_fixed_triangles + 9 * box_room_triangles_per_box);
+  // The same scene as built by name, camera included.
+  const scene direct = make_box_room(3);
+  EXPECT_EQ(s.surfaces.size(), direct.surfaces.size());
+  EXPECT_EQ(s.materials.size(), direct.materials.size());
+  EXPECT_EQ(s.view.eye, direct.view.eye);
+  ASSERT_TRUE(load_scene("generated:interior-10k", s, report)) << report.error;
+  EXPECT_NEAR(double(triangle_count(s)), 10'000.0, 100.0);
+}
+
 TEST(SceneIo, ImageTextureIsDecodedToLinear) {
   scratch_dir dir;
   // 2x1 PNG: sRGB 255 (linear 1) and sRGB 128 (linear 0.2158).
@@ -337,6 +354,17 @@ TEST(SceneIoBadInput, MissingFile) {
 TEST(SceneIoBadInput, UnknownFormat) {
   scratch_dir dir;
   std::string e = load_error_of(dir.write("scene.txt", "hello"));
+  EXPECT_NE(e.find("unknown scene format"), std::string::npos) << e;
+}
+
+TEST(SceneIoBadInput, UnknownGeneratedNameIsNamed) {
+  std::string e = load_error_of("generated:castle-12");
+  EXPECT_EQ(e.rfind("generated:castle-12: ", 0), 0u) << e;
+  EXPECT_NE(e.find("unknown procedural scene 'castle-12'"), std::string::npos) << e;
+  e = load_error_of("generated:interior-12q");
+  EXPECT_NE(e.find("'12q' is not a triangle count"), std::string::npos) << e;
+  // Only the prefix selects it: a file of that name elsewhere is a file.
+  e = load_error_of("/tmp/generated:box-room-3");
   EXPECT_NE(e.find("unknown scene format"), std::string::npos) << e;
 }
 

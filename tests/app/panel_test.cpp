@@ -1,0 +1,205 @@
+// The panel's logic without a window: the solver choice and the link
+// tolerance restart the solve through the worker as the window does, the
+// statistics follow the solver that runs, and the panel laid out headless
+// (ImGui needs no renderer to lay out) fits its labels.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <imgui_internal.h>
+
+#include "panel.h"
+#include "scene/scene_io.h"
+#include "solver_worker.h"
+
+namespace bounce {
+namespace {
+
+scene cornell() {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
+  return s;
+}
+
+solver_settings hierarchical(double link_tolerance) {
+  solver_settings o;
+  o.method = solver_method::hierarchical;
+  o.max_edge = 80;
+  o.link_tolerance = link_tolerance;
+  o.stop.unshot_fraction = 0.01;
+  return o;
+}
+
+bool has_line(const std::vector<std::string>& lines, const std::string& part) {
+  return std::any_of(lines.begin(), lines.end(),
+                     [&](const std::string& l) { return l.find(part) != std::string::npos; });
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& l : lines) text += l + "\n";
+  return text;
+}
+
+TEST(Panel, ChoosingTheOtherSolverRestartsWithIt) {
+  solver_worker worker;
+  panel_state panel;
+  panel.solver = hierarchical(1e-4);
+  worker.load(cornell(), panel.solver);
+  worker.wait_idle();
+  const auto first = worker.latest();
+  ASSERT_TRUE(first->solution);
+  EXPECT_EQ(first->settings.method, solver_method::hierarchical);
+  EXPECT_GT(first->solution->stats.links, 0u);
+
+  // The same solver again: nothing to do.
+  EXPECT_FALSE(choose_solver(panel, solver_method::hierarchical).apply_mesh);
+  // The other one: a restart with it, on the same scene, as the window sends it.
+  const panel_actions act = choose_solver(panel, solver_method::progressive);
+  EXPECT_TRUE(act.apply_mesh);
+  EXPECT_EQ(panel.solver.method, solver_method::progressive);
+  send_to_worker(act, panel, worker);
+  worker.wait_idle();
+  const auto second = worker.latest();
+  ASSERT_TRUE(second->solution);
+  EXPECT_EQ(second->settings.method, solver_method::progressive);
+  EXPECT_EQ(second->run, first->run + 1);
+  EXPECT_EQ(second->source, first->source);  // the scene is kept, not copied
+  EXPECT_EQ(second->solution->stats.links, 0u);
+  EXPECT_GT(second->solution->stats.shots, 0u);
+  EXPECT_TRUE(second->converged);
+  EXPECT_TRUE(second->error.empty()) << second->error;
+  // The progressive solver shoots from patches: another mesh.
+  EXPECT_NE(second->mesh, first->mesh);
+  EXPECT_EQ(second->mesh_version, first->mesh_version + 1);
+
+  // And back.
+  send_to_worker(choose_solver(panel, solver_method::hierarchical), panel, worker);
+  worker.wait_idle();
+  const auto third = worker.latest();
+  EXPECT_EQ(third->settings.method, solver_method::hierarchical);
+  EXPECT_GT(third->solution->stats.links, 0u);
+  EXPECT_TRUE(third->converged);
+}
+
+TEST(Panel, ANewLinkToleranceRestartsOnTheSameMesh) {
+  solver_worker worker;
+  panel_state panel;
+  panel.solver = hierarchical(1e-3);
+  worker.load(cornell(), panel.solver);
+  worker.wait_idle();
+  const auto coarse = worker.latest();
+  ASSERT_TRUE(coarse->solution);
+  panel.solver.link_tolerance = 1e-5;
+  panel_actions act;
+  act.apply_mesh = true;  // what the slider asks for when it is let go
+  send_to_worker(act, panel, worker);
+  worker.wait_idle();
+  const auto fine = worker.latest();
+  EXPECT_EQ(fine->run, coarse->run + 1);
+  EXPECT_EQ(fine->mesh, coarse->mesh);  // nothing to re-mesh or upload again
+  EXPECT_EQ(fine->mesh_arrays, coarse->mesh_arrays);
+  EXPECT_EQ(fine->mesh_version, coarse->mesh_version);
+  EXPECT_EQ(fine->settings.link_tolerance, 1e-5);
+  EXPECT_DOUBLE_EQ(fine->solution->stats.link_tolerance, 1e-5);
+  EXPECT_TRUE(fine->solution->stats.links_final);
+  EXPECT_GT(fine->solution->stats.links, coarse->solution->stats.links);
+}
+
+TEST(Panel, AdaptiveMeshingIsLeftOutOfHierarchicalRuns) {
+  solver_settings s = hierarchical(1e-5);
+  s.adaptive.enabled = true;
+  EXPECT_FALSE(settings_to_run(s).adaptive.enabled);
+  s.method = solver_method::progressive;
+  EXPECT_TRUE(settings_to_run(s).adaptive.enabled);
+}
+
+TEST(Panel, TolerancesAreShownShort) {
+  EXPECT_EQ(format_tolerance(1e-5), "1e-5");
+  EXPECT_EQ(format_tolerance(2.5e-6), "2.5e-6");
+  EXPECT_EQ(format_tolerance(1e-12), "1e-12");
+  EXPECT_EQ(format_tolerance(0.01), "0.01");
+}
+
+TEST(Panel, StatisticsFollowTheSolverThatRuns) {
+  solver_worker worker;
+  worker.load(cornell(), hierarchical(1e-5));
+  worker.pause();
+  worker.step();  // the first links, at the coarsest tolerance: more to refine
+  worker.wait_idle();
+  auto view = worker.latest();
+  ASSERT_TRUE(view->solution);
+  std::vector<std::string> lines = statistics_lines(*view, 12.5);
+  EXPECT_TRUE(has_line(lines, "hierarchical: paused")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "steps 1, residual ")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "links " + std::to_string(view->solution->stats.links) + " (")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, " MiB)")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "refining to 1e-5")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "frame 12.5 ms")) << joined(lines);
+  EXPECT_FALSE(has_line(lines, "shots")) << joined(lines);
+
+  worker.resume();
+  worker.wait_idle();
+  view = worker.latest();
+  lines = statistics_lines(*view, 12.5);
+  EXPECT_TRUE(has_line(lines, "hierarchical: converged")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "link tolerance 1e-5, final")) << joined(lines);
+  // 16 bytes a link.
+  char mib[64];
+  std::snprintf(mib, sizeof mib, "(%.1f MiB)", double(view->solution->stats.links) * 16.0 / (1024.0 * 1024.0));
+  EXPECT_TRUE(has_line(lines, mib)) << joined(lines);
+
+  solver_settings progressive = hierarchical(1e-5);
+  progressive.method = solver_method::progressive;
+  worker.load(cornell(), progressive);
+  worker.wait_idle();
+  lines = statistics_lines(*worker.latest(), 12.5);
+  EXPECT_TRUE(has_line(lines, "progressive: converged")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "shots ")) << joined(lines);
+  EXPECT_TRUE(has_line(lines, "unshot ")) << joined(lines);
+  EXPECT_FALSE(has_line(lines, "links")) << joined(lines);
+}
+
+// The panel laid out as the window first shows it: nothing runs past its
+// right edge (a label cut off), for either solver.
+TEST(Panel, LabelsFitThePanelForEitherSolver) {
+  solver_worker worker;
+  worker.load(cornell(), hierarchical(1e-4));
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(900, 900);
+  io.DeltaTime = 1.0f / 60.0f;
+  unsigned char* pixels = nullptr;
+  int w = 0, h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  for (const solver_method method : {solver_method::hierarchical, solver_method::progressive}) {
+    panel_state panel;
+    panel.solver = hierarchical(1e-4);
+    panel.solver.method = method;
+    panel.solver.adaptive.enabled = true;  // its controls too, where they are shown
+    panel.still.integrator = 0;            // Whitted: its direct-light choice shown
+    panel.still.window_size = false;       // the size fields shown
+    for (int frame = 0; frame < 3; ++frame) {
+      ImGui::NewFrame();
+      draw_panel(panel, *view, 16.0);
+      ImGui::Render();
+      // Every section open, as if clicked: their headers' state by ID.
+      ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
+      ASSERT_NE(window, nullptr);
+      for (const char* header : {"Scene", "Solver", "Statistics", "Display", "Ray-traced still"})
+        window->StateStorage.SetInt(window->GetID(header), 1);
+    }
+    const ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
+    const float room = window->Size.x - 2.0f * window->WindowPadding.x;
+    EXPECT_LE(window->ContentSize.x, room + 0.5f) << name_of(method);
+  }
+  ImGui::DestroyContext();
+}
+
+}  // namespace
+}  // namespace bounce
