@@ -4,8 +4,11 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "mesh/patch_mesh.h"
 #include "scene/scene.h"
+#include "scene/scene_io.h"
 
 namespace bounce::testing {
 
@@ -48,6 +51,14 @@ inline scene furnace(double rho) {
   scene s;
   const int m = add_material(s, rgb(rho), rgb(1.0));
   add_closed_box(s, vec3(-1.0), vec3(1.0), m);
+  return s;
+}
+
+// The embedded Cornell box, as every command loads it without a scene.
+inline scene default_cornell_box() {
+  scene s;
+  load_report report;
+  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include "mesh_builders.h"
 #include "panel.h"
 #include "scene/scene_io.h"
 #include "solver_worker.h"
@@ -17,10 +18,7 @@ namespace bounce {
 namespace {
 
 scene cornell() {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
-  return s;
+  return testing::default_cornell_box();
 }
 
 solver_settings hierarchical(double link_tolerance) {

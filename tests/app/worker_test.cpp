@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "error_tracker.h"
+#include "mesh_builders.h"
 #include "scene/scene_io.h"
 #include "solver_worker.h"
 #include "test_files.h"
@@ -15,10 +16,7 @@ namespace bounce {
 namespace {
 
 scene cornell() {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
-  return s;
+  return testing::default_cornell_box();
 }
 
 // The progressive solver: one shot per step, unshot falling.

@@ -45,10 +45,7 @@ void solve(radiosity_state& state, double fraction, int max_steps = 400) {
 }
 
 scene cornell() {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
-  return s;
+  return testing::default_cornell_box();
 }
 
 double largest_relative_difference(const std::vector<rgb>& a, const std::vector<rgb>& b) {
