@@ -54,6 +54,15 @@ inline scene furnace(double rho) {
   return s;
 }
 
+// The scene's patch mesh at `max_edge` (crease angle 30 degrees, elements
+// as patches).
+inline patch_mesh mesh_of(const scene& s, double max_edge) {
+  patch_mesh mesh;
+  std::string error;
+  EXPECT_TRUE(make_patch_mesh(s, {max_edge, 30.0}, mesh, error)) << error;
+  return mesh;
+}
+
 // The embedded Cornell box, as every command loads it without a scene.
 inline scene default_cornell_box() {
   scene s;

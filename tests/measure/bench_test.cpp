@@ -8,6 +8,7 @@
 #include "image/image_metrics.h"
 #include "measure/bench.h"
 #include "measure/closed_forms.h"
+#include "mesh_builders.h"
 #include "scene/scene_io.h"
 
 namespace bounce {
@@ -22,12 +23,7 @@ scene bench_scene(const std::string& name) {
   return s;
 }
 
-patch_mesh mesh_of(const scene& s, double max_edge) {
-  patch_mesh mesh;
-  std::string error;
-  EXPECT_TRUE(make_patch_mesh(s, {max_edge, 30.0, 0.0}, mesh, error)) << error;
-  return mesh;
-}
+using testing::mesh_of;
 
 // ---- metrics ----
 

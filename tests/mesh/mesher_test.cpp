@@ -24,12 +24,7 @@ scene cornell() {
   return s;
 }
 
-patch_mesh mesh_of(const scene& s, double max_edge) {
-  patch_mesh mesh;
-  std::string error;
-  EXPECT_TRUE(make_patch_mesh(s, {max_edge, 30.0}, mesh, error)) << error;
-  return mesh;
-}
+using testing::mesh_of;
 
 double polygon_area(const polygon_mesh& m, const polygon_face& f) {
   vec3 newell(0.0);

@@ -21,12 +21,7 @@ using testing::add_material;
 using testing::add_polygon;
 using testing::furnace;
 
-patch_mesh mesh_of(const scene& s, double max_edge) {
-  patch_mesh mesh;
-  std::string error;
-  EXPECT_TRUE(make_patch_mesh(s, {max_edge, 30.0}, mesh, error)) << error;
-  return mesh;
-}
+using testing::mesh_of;
 
 radiosity_params hierarchical(double tolerance) {
   radiosity_params p;
