@@ -41,23 +41,6 @@ double uniform(std::uint64_t& state) {
   return double(state >> 11) * 0x1.0p-53;
 }
 
-// Working arrays of one operator application.
-struct transport_buffers {
-  std::vector<rgb> node_b;
-  std::vector<rgb> gathered;             // oriented nodes: irradiance gathered by their own links, then pushed
-  std::vector<std::array<rgb, 6>> bins;  // clusters: irradiance per unit area facing +x, -x, ...
-};
-
-transport_buffers& buffers_for(const hierarchical_solver& solver) {
-  // One set per solver thread: apply_transport is called by one thread at a time per solver.
-  static thread_local transport_buffers buffers;
-  buffers.node_b.resize(solver.tree.nodes.size());
-  buffers.gathered.resize(solver.tree.nodes.size());
-  buffers.bins.resize(
-      std::size_t(std::count_if(solver.cube_slot.begin(), solver.cube_slot.end(), [](int s) { return s >= 0; })));
-  return buffers;
-}
-
 // Irradiance on an oriented surface of normal n from six direction bins.
 rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
   rgb sum(0.0);
@@ -90,7 +73,7 @@ void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vec
 // down to the elements: out[e] = irradiance on element e.
 void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
   const cluster_tree& tree = solver.tree;
-  transport_buffers& buf = buffers_for(solver);
+  hierarchical_solver::transport_buffers& buf = solver.buffers;
   pull(solver, x, buf.node_b);
   const std::size_t n = tree.nodes.size();
   for_each_block(solver.params.parallel, n, 1024, [&](std::size_t b, std::size_t e) {
@@ -468,6 +451,9 @@ std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, co
   int slots = 0;
   for (std::size_t i = 0; i < solver->tree.nodes.size(); ++i)
     if (!solver->tree.nodes[i].oriented) solver->cube_slot[i] = slots++;
+  solver->buffers.node_b.resize(solver->tree.nodes.size());
+  solver->buffers.gathered.resize(solver->tree.nodes.size());
+  solver->buffers.bins.resize(std::size_t(slots));
 
   const std::size_t n = mesh.element_count();
   solver->rho.resize(n);
@@ -513,9 +499,8 @@ void restart_hierarchical(hierarchical_solver& solver) {
 
 void refine_links(hierarchical_solver& solver, double tolerance) {
   if (solver.tree.nodes.empty()) return;
-  transport_buffers node_buffers;
-  node_buffers.node_b.resize(solver.tree.nodes.size());
-  pull(solver, solver.radiosity, node_buffers.node_b);
+  std::vector<rgb> node_b(solver.tree.nodes.size());
+  pull(solver, solver.radiosity, node_b);
   tbb::enumerable_thread_specific<std::vector<hierarchy_link>> out;
   std::atomic<std::size_t> count{0};
   std::atomic<std::uint64_t> rays{0};
@@ -527,7 +512,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   for (std::size_t e = 0; e < solver.radiosity.size(); ++e)
     leaving += std::max(0.0, channel_sum_of(solver.radiosity[e])) * solver.mesh->element_areas[e];
   const double power = std::max(leaving, solver.emitted_power) / 3.0;
-  refine_context ctx{solver, node_buffers.node_b, tolerance * power, out, count, rays, limit_hit};
+  refine_context ctx{solver, node_b, tolerance * power, out, count, rays, limit_hit};
   if (solver.links.empty()) {
     refine_self(ctx, 0);
   } else {
@@ -539,7 +524,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
         const cluster_node& s = solver.tree.nodes[link.source];
         const bool splittable = !(r.leaf() && s.leaf()) && !limit_hit.load(std::memory_order_relaxed);
         const link_estimate est = estimate(solver, link.receiver, link.source);
-        const double error = est.bound * r.area * channel_max(node_buffers.node_b[link.source]);
+        const double error = est.bound * r.area * channel_max(node_b[link.source]);
         const bool partial = link.visibility > 0.0f && link.visibility < 1.0f;
         if (splittable &&
             (error > ctx.tolerance || (partial && solver.params.partial_factor * error > ctx.tolerance))) {

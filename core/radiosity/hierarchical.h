@@ -26,6 +26,7 @@
 // each element's gathered irradiance is divided by its form-factor sum.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -95,6 +96,14 @@ struct hierarchical_solver {
   std::vector<hierarchy_link> links;      // sorted by receiver
   std::vector<std::size_t> link_offsets;  // per receiver node: its links are [offsets[i], offsets[i+1])
   std::vector<int> cube_slot;             // per node: its six-bin slot, or -1 for oriented nodes
+  // Working arrays of an operator application, sized with the tree (one
+  // caller at a time: the solver's own thread).
+  struct transport_buffers {
+    std::vector<rgb> node_b;
+    std::vector<rgb> gathered;             // oriented nodes: irradiance gathered by their own links, then pushed
+    std::vector<std::array<rgb, 6>> bins;  // clusters: irradiance per unit area facing +x, -x, ...
+  };
+  mutable transport_buffers buffers;
 
   // Per element
   std::vector<rgb> rho;
