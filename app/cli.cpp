@@ -217,7 +217,7 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->default_str(std::string(name_of(o.form_factors.method)));
   command
       .add_option("--max-edge", o.max_edge,
-                  "longest element edge, scene units (default: diagonal/64; progressive: /24)")
+                  "longest element edge, scene units (default: diagonal/10, split while solving; progressive: /24)")
       ->check(number_in(0.0, INFINITY, true));
   command.add_option("--until", o.stop.unshot_fraction, "stop when the unshot power fraction falls below this")
       ->check(number_in(0.0, 1.0))
@@ -254,9 +254,9 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->needs(adaptive);
   command
       .add_option("--min-edge", o.adaptive.min_edge,
-                  "adaptive: elements whose longest edge is at most this are not split (default: max edge / 8)")
-      ->check(number_in(0.0, INFINITY, true))
-      ->needs(adaptive);
+                  "hierarchical and --adaptive: elements whose longest edge is at most this are not split "
+                  "(default: max edge / 8)")
+      ->check(number_in(0.0, INFINITY, true));
 }
 
 std::span<const char* const> solver_option_names() {
@@ -277,7 +277,7 @@ std::string check_solver_options(const CLI::App& command, solver_settings& setti
   // Options of the progressive solver choose it, unless the hierarchical
   // one was asked for by name: then they would be ignored.
   static constexpr const char* progressive_only[] = {"--method",   "--patch-edge", "--full-rays", "--rays",
-                                                     "--hemicube", "--adaptive",   "--tolerance", "--min-edge"};
+                                                     "--hemicube", "--adaptive",   "--tolerance"};
   if (const std::string given = given_options(command, progressive_only); !given.empty()) {
     if (command.count("--solver") && settings.method == solver_method::hierarchical)
       return given + (given.find(',') == std::string::npos ? " applies" : " apply") + " to --solver progressive only";
@@ -285,6 +285,8 @@ std::string check_solver_options(const CLI::App& command, solver_settings& setti
   }
   if (settings.method != solver_method::hierarchical && command.count("--link-tolerance"))
     return "--link-tolerance applies to --solver hierarchical only";
+  if (settings.method == solver_method::progressive && !settings.adaptive.enabled && command.count("--min-edge"))
+    return "--min-edge applies to --solver hierarchical or --adaptive only";
   const bool hemicube = settings.form_factors.method == form_factor_method::hemicube;
   if (hemicube && command.count("--rays")) return "--rays applies to --method raycast only";
   if (hemicube && command.count("--full-rays")) return "--full-rays applies to --method raycast only";

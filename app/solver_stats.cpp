@@ -53,6 +53,9 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                            {"refinements", h.progress.refinements},
                            {"operator_applications", h.progress.operator_applications},
                            {"tree_nodes", h.tree.nodes.size()},
+                           {"min_edge", h.params.split_elements ? h.min_edge : 0.0},
+                           {"element_passes", h.progress.element_passes},
+                           {"elements_marked", h.progress.split_marks},
                            {"closed_scene", h.progress.closed},
                            {"final_gather_evaluations", h.progress.gather_evaluations},
                            {"warning", h.progress.warning}};

@@ -306,12 +306,13 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   }
   pm.nonmanifold_faces = nonmanifold;
   pm.uncut_overlaps = cuts.pieces_left_uncut;
-  if (params.a_priori_min_edge > 0.0) {
-    if (params.a_priori_min_edge < max_edge / 256.0) {
-      error = "min edge " + std::to_string(params.a_priori_min_edge) + " is below max edge / 256 (" +
-              std::to_string(max_edge / 256.0) + "); use a larger --min-edge";
+  for (double min_edge : {params.a_priori_min_edge, params.solver_min_edge})
+    if (min_edge > 0.0 && min_edge < max_edge / 256.0) {
+      error = "min edge " + std::to_string(min_edge) + " is below max edge / 256 (" + std::to_string(max_edge / 256.0) +
+              "); use a larger --min-edge";
       return false;
     }
+  if (params.a_priori_min_edge > 0.0) {
     refinement_pass report;
     if (!refine_a_priori(pm, params.a_priori_min_edge, report, error)) return false;
     if (params.a_priori_report) *params.a_priori_report = report;

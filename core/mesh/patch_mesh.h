@@ -62,6 +62,9 @@ struct mesher_params {
   // at contacts and near emitters down to this edge
   double a_priori_min_edge = 0.0;
   refinement_pass* a_priori_report = nullptr;  // if set, what the a priori pass did
+  // > 0: the smallest edge the solver will split elements down to later
+  // (the hierarchical solver); checked here like a_priori_min_edge
+  double solver_min_edge = 0.0;
 };
 
 // Largest mesh make_patch_mesh builds; past it, a clear error.

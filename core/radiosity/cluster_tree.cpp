@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace bounce {
@@ -51,91 +52,150 @@ void fill_inner(cluster_tree& tree, int index) {
   node.normal = node.oriented ? first_normal : vec3(0.0);
 }
 
-}  // namespace
+// Grows a tree top-down, breadth first: a node's children are appended
+// together, so they are consecutive and come after their parent. A node
+// either copies the shape of an old tree's node (extend_cluster_tree) or
+// splits a range of `order` at the median along the widest axis of the
+// centroids; an old leaf continues as the range of its element's pieces.
+struct tree_builder {
+  const patch_mesh& mesh;
+  const cluster_tree* old = nullptr;
+  std::vector<std::size_t> piece_start;  // old element o's pieces are order[piece_start[o], piece_start[o + 1])
+  std::vector<int> order;
+  std::vector<vec3> centroid;
 
-cluster_tree build_cluster_tree(const patch_mesh& mesh) {
-  cluster_tree tree;
-  const std::size_t n = mesh.element_count();
-  tree.leaf_of_element.assign(n, -1);
-  if (n == 0) return tree;
-  std::vector<vec3> centroid(n);
-  for (std::size_t e = 0; e < n; ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    centroid[e] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-  }
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  tree.nodes.reserve(2 * n);
-  tree.nodes.emplace_back();
-
-  // Top-down, breadth first: a node's two children are appended together,
-  // so they are consecutive and come after their parent.
-  struct range {
+  struct pending_node {
     int node;
+    int old_node;  // -1: a range of order
     std::size_t begin, end;
     int depth;
   };
-  std::vector<range> pending{{0, 0, n, 0}};
-  for (std::size_t next = 0; next < pending.size(); ++next) {
-    const range r = pending[next];
-    if (int(tree.levels.size()) == r.depth) tree.levels.push_back(r.node);
-    if (r.end - r.begin == 1) {
-      fill_leaf(tree.nodes[r.node], mesh, order[r.begin]);
-      tree.leaf_of_element[order[r.begin]] = r.node;
-      continue;
+
+  explicit tree_builder(const patch_mesh& m) : mesh(m) {
+    const std::size_t n = mesh.element_count();
+    centroid.resize(n);
+    for (std::size_t e = 0; e < n; ++e) {
+      const glm::ivec3 t = mesh.elements[e];
+      centroid[e] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
     }
-    vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (std::size_t i = r.begin; i < r.end; ++i) {
-      lo = glm::min(lo, centroid[order[i]]);
-      hi = glm::max(hi, centroid[order[i]]);
-    }
-    const vec3 extent = hi - lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    const std::size_t middle = r.begin + (r.end - r.begin) / 2;
-    std::nth_element(order.begin() + std::ptrdiff_t(r.begin), order.begin() + std::ptrdiff_t(middle),
-                     order.begin() + std::ptrdiff_t(r.end),
-                     [&](int a, int b) { return centroid[a][axis] < centroid[b][axis]; });
-    const int first = int(tree.nodes.size());
-    tree.nodes.emplace_back();
-    tree.nodes.emplace_back();
-    tree.nodes[r.node].first_child = first;
-    tree.nodes[r.node].child_count = 2;
-    tree.nodes[first].parent = tree.nodes[first + 1].parent = r.node;
-    pending.push_back({first, r.begin, middle, r.depth + 1});
-    pending.push_back({first + 1, middle, r.end, r.depth + 1});
   }
-  tree.levels.push_back(int(tree.nodes.size()));
-  // Bottom-up: children have larger indices than their parent.
-  for (int i = int(tree.nodes.size()) - 1; i >= 0; --i)
-    if (!tree.nodes[i].leaf()) fill_inner(tree, i);
-  // Strata bottom-up: slice k of a node covers area fraction
-  // [k, k + 1) / K; its centre falls in one child, whose slice at the same
-  // relative position supplies the element.
-  constexpr int strata = cluster_tree::sample_strata;
-  tree.strata.resize(tree.nodes.size());
-  for (int i = int(tree.nodes.size()) - 1; i >= 0; --i) {
-    const cluster_node& node = tree.nodes[i];
-    tree.oriented_nodes += node.oriented ? 1 : 0;
-    if (node.leaf()) {
-      tree.strata[i].fill(node.element);
-      continue;
-    }
-    for (int k = 0; k < strata; ++k) {
-      double position = (k + 0.5) / strata * node.area;
-      int chosen = node.first_child + node.child_count - 1;
-      for (int c = node.first_child; c < node.first_child + node.child_count; ++c) {
-        if (position < tree.nodes[c].area || c == chosen) {
-          chosen = c;
-          break;
+
+  cluster_tree build(pending_node root, std::vector<int>* node_of_old) {
+    cluster_tree tree;
+    tree.leaf_of_element.assign(mesh.element_count(), -1);
+    if (mesh.element_count() == 0) return tree;
+    tree.nodes.reserve(2 * mesh.element_count());
+    tree.nodes.emplace_back();
+    std::vector<pending_node> pending{root};
+    for (std::size_t next = 0; next < pending.size(); ++next) {
+      pending_node r = pending[next];
+      if (int(tree.levels.size()) == r.depth) tree.levels.push_back(r.node);
+      if (r.old_node >= 0) {
+        (*node_of_old)[std::size_t(r.old_node)] = r.node;
+        const cluster_node& o = old->nodes[std::size_t(r.old_node)];
+        if (!o.leaf()) {
+          const int first = int(tree.nodes.size());
+          tree.nodes.resize(tree.nodes.size() + std::size_t(o.child_count));
+          tree.nodes[r.node].first_child = first;
+          tree.nodes[r.node].child_count = o.child_count;
+          for (int c = 0; c < o.child_count; ++c) {
+            tree.nodes[first + c].parent = r.node;
+            pending.push_back({first + c, o.first_child + c, 0, 0, r.depth + 1});
+          }
+          continue;
         }
-        position -= tree.nodes[c].area;
+        r.begin = piece_start[std::size_t(o.element)];
+        r.end = piece_start[std::size_t(o.element) + 1];
       }
-      const double area = tree.nodes[chosen].area;
-      const int slice = area > 0.0 ? std::clamp(int(position / area * strata), 0, strata - 1) : 0;
-      tree.strata[i][k] = tree.strata[chosen][slice];
+      if (r.end - r.begin == 1) {
+        fill_leaf(tree.nodes[r.node], mesh, order[r.begin]);
+        tree.leaf_of_element[order[r.begin]] = r.node;
+        continue;
+      }
+      vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+      for (std::size_t i = r.begin; i < r.end; ++i) {
+        lo = glm::min(lo, centroid[order[i]]);
+        hi = glm::max(hi, centroid[order[i]]);
+      }
+      const vec3 extent = hi - lo;
+      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+      const std::size_t middle = r.begin + (r.end - r.begin) / 2;
+      std::nth_element(order.begin() + std::ptrdiff_t(r.begin), order.begin() + std::ptrdiff_t(middle),
+                       order.begin() + std::ptrdiff_t(r.end),
+                       [&](int a, int b) { return centroid[a][axis] < centroid[b][axis]; });
+      const int first = int(tree.nodes.size());
+      tree.nodes.emplace_back();
+      tree.nodes.emplace_back();
+      tree.nodes[r.node].first_child = first;
+      tree.nodes[r.node].child_count = 2;
+      tree.nodes[first].parent = tree.nodes[first + 1].parent = r.node;
+      pending.push_back({first, -1, r.begin, middle, r.depth + 1});
+      pending.push_back({first + 1, -1, middle, r.end, r.depth + 1});
+    }
+    tree.levels.push_back(int(tree.nodes.size()));
+    finish(tree);
+    return tree;
+  }
+
+  // Bottom-up (children have larger indices than their parent): the inner
+  // nodes' sums, then the strata.
+  static void finish(cluster_tree& tree) {
+    for (int i = int(tree.nodes.size()) - 1; i >= 0; --i)
+      if (!tree.nodes[i].leaf()) fill_inner(tree, i);
+    // Slice k of a node covers area fraction [k, k + 1) / K; its centre
+    // falls in one child, whose slice at the same relative position
+    // supplies the element.
+    constexpr int strata = cluster_tree::sample_strata;
+    tree.strata.resize(tree.nodes.size());
+    for (int i = int(tree.nodes.size()) - 1; i >= 0; --i) {
+      const cluster_node& node = tree.nodes[i];
+      tree.oriented_nodes += node.oriented ? 1 : 0;
+      if (node.leaf()) {
+        tree.strata[i].fill(node.element);
+        continue;
+      }
+      for (int k = 0; k < strata; ++k) {
+        double position = (k + 0.5) / strata * node.area;
+        int chosen = node.first_child + node.child_count - 1;
+        for (int c = node.first_child; c < node.first_child + node.child_count; ++c) {
+          if (position < tree.nodes[c].area || c == chosen) {
+            chosen = c;
+            break;
+          }
+          position -= tree.nodes[c].area;
+        }
+        const double area = tree.nodes[chosen].area;
+        const int slice = area > 0.0 ? std::clamp(int(position / area * strata), 0, strata - 1) : 0;
+        tree.strata[i][k] = tree.strata[chosen][slice];
+      }
     }
   }
-  return tree;
+};
+
+}  // namespace
+
+cluster_tree build_cluster_tree(const patch_mesh& mesh) {
+  tree_builder builder(mesh);
+  builder.order.resize(mesh.element_count());
+  std::iota(builder.order.begin(), builder.order.end(), 0);
+  return builder.build({0, -1, 0, mesh.element_count(), 0}, nullptr);
+}
+
+cluster_tree extend_cluster_tree(const cluster_tree& old, const patch_mesh& mesh, std::span<const int> from,
+                                 std::vector<int>& node_of_old) {
+  tree_builder builder(mesh);
+  builder.old = &old;
+  // The pieces of each old element, together (a counting sort by `from`).
+  const std::size_t old_elements = old.leaf_of_element.size();
+  builder.piece_start.assign(old_elements + 1, 0);
+  for (int o : from) ++builder.piece_start[std::size_t(o) + 1];
+  for (std::size_t o = 0; o < old_elements; ++o) builder.piece_start[o + 1] += builder.piece_start[o];
+  builder.order.resize(from.size());
+  std::vector<std::size_t> fill(builder.piece_start.begin(), builder.piece_start.end() - 1);
+  for (std::size_t e = 0; e < from.size(); ++e) builder.order[fill[std::size_t(from[e])]++] = int(e);
+  node_of_old.assign(old.nodes.size(), -1);
+  if (old.nodes.empty()) return build_cluster_tree(mesh);
+  return builder.build({0, 0, 0, 0, 0}, &node_of_old);
 }
 
 double projected_area(const cluster_node& node, const vec3& d) {

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "mesh/patch_mesh.h"
@@ -52,6 +53,14 @@ struct cluster_tree {
 // Builds the tree over the mesh's elements (median splits along the widest
 // axis of the centroids), children before grandchildren in index order.
 cluster_tree build_cluster_tree(const patch_mesh& mesh);
+
+// The tree of `mesh`, a refinement of the mesh `old` was built on
+// (from[e]: the old element that element e lies in): every old node keeps
+// its place in the shape (node_of_old maps old node indices to new ones),
+// and an old leaf whose element was split becomes the root of a subtree
+// over its pieces. Links between old nodes stay valid, renumbered.
+cluster_tree extend_cluster_tree(const cluster_tree& old, const patch_mesh& mesh, std::span<const int> from,
+                                 std::vector<int>& node_of_old);
 
 // The area `node` shows towards unit direction d (emitting or receiving
 // along d): exact for oriented nodes (area x max(0, n.d)), the six-axis

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -15,6 +16,7 @@
 
 #include "base/check.h"
 #include "base/parallel.h"
+#include "mesh/patch_mesh.h"
 #include "radiosity/occlusion.h"
 #include "radiosity/point_lights.h"
 
@@ -152,7 +154,58 @@ struct refine_context {
   std::atomic<std::size_t>& count;
   std::atomic<std::uint64_t>& rays;
   std::atomic<bool>& limit_hit;
+  tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>>& marks;  // (element, bisections)
 };
+
+double longest_edge(const patch_mesh& mesh, int element) {
+  const glm::ivec3 t = mesh.elements[element];
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, glm::length(mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]));
+  return longest;
+}
+
+// An element-to-element pair that the tree cannot refine further: its
+// receiving element is marked for bisection where the light it gets from
+// the source changes across it. Evenly lit elements stay whole however
+// much light they get: the error of a constant per element is the
+// variation of the transfer (the form factor at its corners against the
+// centre, times the source's radiosity and the element's area), or, on a
+// shadow edge (partly visible), the whole transfer. The bisections asked
+// for halve that error enough (each halves the area, and the variation
+// with it).
+void mark_split(refine_context& ctx, int i, int j, double factor, float visibility) {
+  const hierarchical_solver& solver = ctx.solver;
+  if (!solver.params.split_elements) return;
+  const cluster_node& r = solver.tree.nodes[i];
+  const cluster_node& s = solver.tree.nodes[j];
+  const patch_mesh& mesh = *solver.mesh;
+  const double transfer = r.area * channel_max(ctx.node_b[j]);
+  if (!(factor * transfer > ctx.tolerance)) return;  // nothing this pair carries can matter
+  double error = 0.0;
+  if (visibility > 0.0f && visibility < 1.0f) {
+    error = solver.params.partial_factor * factor * transfer;
+  } else if (visibility > 0.0f) {
+    const glm::ivec3 st = mesh.elements[s.element];
+    const vec3 polygon[3] = {mesh.positions[st[0]], mesh.positions[st[1]], mesh.positions[st[2]]};
+    const glm::ivec3 rt = mesh.elements[r.element];
+    double lo = factor, hi = factor;
+    for (int k = 0; k < 3; ++k) {
+      // Towards the corners, not at them: a corner may touch the source.
+      const vec3 p = r.centroid + 0.75 * (mesh.positions[rt[k]] - r.centroid);
+      const double f = point_polygon_form_factor(p, r.normal, polygon);
+      if (std::isfinite(f)) {
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+    }
+    error = (hi - lo) * transfer;
+  }
+  const double ratio = error / ctx.tolerance;
+  if (!(ratio > 1.0) || !(longest_edge(mesh, r.element) > solver.min_edge)) return;
+  const int bisections = std::clamp(int(std::ceil(std::log2(ratio))), 1, solver.params.max_bisections);
+  ctx.marks.local().emplace_back(r.element, bisections);
+}
 
 link_estimate estimate(const hierarchical_solver& solver, int i, int j) {
   const cluster_node& r = solver.tree.nodes[i];
@@ -209,13 +262,15 @@ float visibility(refine_context& ctx, int i, int j, int count) {
     const surface_point p = sample_node(solver.tree, *solver.mesh, i, u1, v1);
     const surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
     const vec3 pq = q.position - p.position;
-    const vec3 from = p.position + p.normal * (glm::dot(pq, p.normal) >= 0.0 ? solver.offset : -solver.offset);
-    const vec3 to = q.position + q.normal * (glm::dot(pq, q.normal) <= 0.0 ? solver.offset : -solver.offset);
+    const vec3 from =
+        p.position + p.normal * (glm::dot(pq, p.normal) >= 0.0 ? solver.context.offset : -solver.context.offset);
+    const vec3 to =
+        q.position + q.normal * (glm::dot(pq, q.normal) <= 0.0 ? solver.context.offset : -solver.context.offset);
     const double length = glm::length(pq);
     const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, p.normal)) *
                                              std::max(0.0, -glm::dot(pq, q.normal)) / (length * length)
                                        : 0.0;
-    const bool passes = !solver.occlusion->occluded(from, to);
+    const bool passes = !solver.context.occlusion->occluded(from, to);
     open_rays += passes ? 1 : 0;
     total += weight;
     open += passes ? weight : 0.0;
@@ -259,6 +314,7 @@ void refine_pair(refine_context& ctx, int i, int j) {
   // A pair whose estimate is 0 but that is not culled is kept: parts of
   // it may face each other, and a later refinement (with more light) splits it.
   if (!(e.factor > 0.0) && leaves) return;
+  if (leaves) mark_split(ctx, i, j, e.factor, v);
   ctx.out.local().push_back({i, j, float(e.factor), v});
   if (ctx.count.fetch_add(1, std::memory_order_relaxed) + 1 >= ctx.solver.params.max_links)
     ctx.limit_hit.store(true, std::memory_order_relaxed);
@@ -301,8 +357,8 @@ bool scene_is_closed(const hierarchical_solver& solver) {
         const double u = (r + uniform(state)) / 8.0, phi = 2.0 * std::numbers::pi * uniform(state);
         const double s = std::sqrt(u);
         const vec3 dir = n * std::sqrt(std::max(0.0, 1.0 - u)) + a * (s * std::cos(phi)) + c * (s * std::sin(phi));
-        const vec3 from = leaf.centroid + n * solver.offset;
-        if (!solver.occlusion->occluded(from, from + dir * far)) {
+        const vec3 from = leaf.centroid + n * solver.context.offset;
+        if (!solver.context.occlusion->occluded(from, from + dir * far)) {
           escaped = true;
           break;
         }
@@ -437,52 +493,83 @@ void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& 
   for (std::size_t e = 0; e < out.size(); ++e) out[e] = solver.rho[e] * (out[e] * solver.normalizer[e]);
 }
 
+namespace {
+
+// Everything that follows from the mesh and its tree: the operator's
+// working arrays, and per element rho, E, the point lights' light and the
+// emitted power. Drops the links; leaves the solution to the caller.
+void build_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
+  const patch_mesh& mesh = *solver.mesh;
+  const scene& s = *solver.source;
+  solver.context.mesh = &mesh;
+  solver.tree = std::move(tree);
+  solver.cube_slot.assign(solver.tree.nodes.size(), -1);
+  int slots = 0;
+  for (std::size_t i = 0; i < solver.tree.nodes.size(); ++i)
+    if (!solver.tree.nodes[i].oriented) solver.cube_slot[i] = slots++;
+  solver.buffers.node_b.resize(solver.tree.nodes.size());
+  solver.buffers.gathered.resize(solver.tree.nodes.size());
+  solver.buffers.bins.resize(std::size_t(slots));
+  solver.links.clear();
+  solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
+  solver.split_marks.clear();
+
+  const std::size_t n = mesh.element_count();
+  solver.rho.resize(n);
+  solver.emission.resize(n);
+  solver.lamp.assign(n, rgb(0.0));
+  solver.normalizer.assign(n, 1.0);
+  std::uint64_t rays = 0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    solver.rho[e] = (mesh.vertex_rho[t[0]] + mesh.vertex_rho[t[1]] + mesh.vertex_rho[t[2]]) / 3.0;
+    solver.emission[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
+    if (!s.lights.empty()) {
+      const cluster_node& leaf = solver.tree.nodes[solver.tree.leaf_of_element[e]];
+      solver.lamp[e] = solver.rho[e] * point_light_irradiance(s, solver.context, leaf.centroid, leaf.normal, rays);
+    }
+  }
+  solver.progress.rays += rays;
+  solver.emitted_power = 0.0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const rgb b = solver.emission[e] + solver.lamp[e];
+    solver.emitted_power += (b.r + b.g + b.b) * mesh.element_areas[e];
+  }
+}
+
+// Element refinement still to make: marks, passes left, no failure.
+bool splits_pending(const hierarchical_solver& solver) {
+  return solver.params.split_elements && !solver.split_marks.empty() &&
+         solver.progress.element_passes < solver.params.max_element_passes && solver.progress.warning.empty();
+}
+
+}  // namespace
+
 std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, const patch_mesh& mesh,
                                                               const form_factor_context& context,
                                                               const hierarchical_params& params) {
   auto solver = std::make_unique<hierarchical_solver>();
-  solver->mesh = &mesh;
+  solver->mesh = solver->input_mesh = &mesh;
   solver->source = &s;
   solver->params = params;
-  solver->occlusion = context.occlusion;
-  solver->offset = context.offset;
-  solver->tree = build_cluster_tree(mesh);
-  solver->cube_slot.assign(solver->tree.nodes.size(), -1);
-  int slots = 0;
-  for (std::size_t i = 0; i < solver->tree.nodes.size(); ++i)
-    if (!solver->tree.nodes[i].oriented) solver->cube_slot[i] = slots++;
-  solver->buffers.node_b.resize(solver->tree.nodes.size());
-  solver->buffers.gathered.resize(solver->tree.nodes.size());
-  solver->buffers.bins.resize(std::size_t(slots));
-
-  const std::size_t n = mesh.element_count();
-  solver->rho.resize(n);
-  solver->emission.resize(n);
-  solver->lamp.assign(n, rgb(0.0));
-  std::uint64_t rays = 0;
-  for (std::size_t e = 0; e < n; ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    solver->rho[e] = (mesh.vertex_rho[t[0]] + mesh.vertex_rho[t[1]] + mesh.vertex_rho[t[2]]) / 3.0;
-    solver->emission[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
-    if (!s.lights.empty()) {
-      const cluster_node& leaf = solver->tree.nodes[solver->tree.leaf_of_element[e]];
-      solver->lamp[e] = solver->rho[e] * point_light_irradiance(s, context, leaf.centroid, leaf.normal, rays);
-    }
-  }
-  solver->progress.rays = rays;
+  solver->context = context;
+  solver->context.vertex_areas.clear();  // the solver works per element
+  solver->min_edge = params.min_edge > 0.0 ? params.min_edge : mesh.max_edge / 8.0;
+  build_for_mesh(*solver, build_cluster_tree(mesh));
   solver->progress.closed = params.normalize_closed && scene_is_closed(*solver);
-  solver->emitted_power = 0.0;
-  for (std::size_t e = 0; e < n; ++e) {
-    const rgb b = solver->emission[e] + solver->lamp[e];
-    solver->emitted_power += (b.r + b.g + b.b) * mesh.element_areas[e];
-  }
   restart_hierarchical(*solver);
   return solver;
 }
 
 void restart_hierarchical(hierarchical_solver& solver) {
+  if (solver.mesh != solver.input_mesh) {
+    solver.mesh = solver.input_mesh;
+    solver.refined_mesh.reset();
+    build_for_mesh(solver, build_cluster_tree(*solver.mesh));
+  }
   solver.links.clear();
   solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
+  solver.split_marks.clear();
   solver.normalizer.assign(solver.mesh->element_count(), 1.0);
   solver.radiosity = right_hand_side(solver);
   solver.direct = solver.lamp;
@@ -497,6 +584,80 @@ void restart_hierarchical(hierarchical_solver& solver) {
   solver.progress.tolerance = final_tolerance * std::pow(solver.params.refine_factor, solver.params.rounds);
 }
 
+bool refinement_done(const hierarchical_solver& solver) {
+  return solver.progress.links_final && !splits_pending(solver);
+}
+
+bool split_marked_elements(hierarchical_solver& solver) {
+  if (solver.split_marks.empty()) return false;
+  const std::size_t n = solver.mesh->element_count();
+  auto refined = std::make_shared<patch_mesh>(*solver.mesh);
+  std::vector<int> from(n);  // per element of `refined`: the element of solver.mesh it lies in
+  std::iota(from.begin(), from.end(), 0);
+  std::vector<std::uint8_t> remaining = solver.split_marks;
+  std::vector<int> origin, marked, pieces;
+  std::string error;
+  bool split = false;
+  for (int pass = 0; pass < solver.params.max_bisections; ++pass) {
+    marked.clear();
+    for (std::size_t e = 0; e < remaining.size(); ++e)
+      if (remaining[e] > 0) marked.push_back(int(e));
+    if (marked.empty()) break;
+    const std::size_t before = refined->element_count();
+    if (!refine_patch_mesh(*refined, marked, solver.min_edge, origin, error)) {
+      solver.progress.warning = "element refinement stopped: " + error;
+      break;
+    }
+    // Pieces of a split element take one bisection less than it still needed.
+    pieces.assign(before, 0);
+    for (int o : origin) ++pieces[std::size_t(o)];
+    std::vector<int> next_from(origin.size());
+    std::vector<std::uint8_t> next_remaining(origin.size());
+    for (std::size_t e = 0; e < origin.size(); ++e) {
+      const int o = origin[e];
+      next_from[e] = from[std::size_t(o)];
+      next_remaining[e] =
+          pieces[std::size_t(o)] > 1 && remaining[std::size_t(o)] > 0 ? remaining[std::size_t(o)] - 1 : 0;
+    }
+    from = std::move(next_from);
+    remaining = std::move(next_remaining);
+    if (refined->element_count() == before) break;
+    split = true;
+  }
+  solver.split_marks.clear();
+  ++solver.progress.element_passes;
+  if (!split) return false;
+
+  // The old tree continues with subtrees over the pieces, so the links
+  // stay (renumbered); the next link refinement splits those that the
+  // pieces now allow. Each piece keeps its element's radiosity: the
+  // piecewise-constant solution is unchanged, and iterating goes on from it.
+  std::vector<int> node_of_old;
+  cluster_tree tree = extend_cluster_tree(solver.tree, *refined, from, node_of_old);
+  std::vector<hierarchy_link> links = std::move(solver.links);
+  for (hierarchy_link& link : links) {
+    link.receiver = node_of_old[std::size_t(link.receiver)];
+    link.source = node_of_old[std::size_t(link.source)];
+  }
+  const std::vector<rgb> radiosity = std::move(solver.radiosity), direct = std::move(solver.direct);
+  solver.refined_mesh = refined;
+  solver.mesh = refined.get();
+  build_for_mesh(solver, std::move(tree));
+  solver.links = std::move(links);
+  index_links(solver);
+  const std::size_t m = solver.mesh->element_count();
+  solver.radiosity.resize(m);
+  solver.direct.resize(m);
+  for (std::size_t e = 0; e < m; ++e) {
+    solver.radiosity[e] = radiosity[std::size_t(from[e])];
+    solver.direct[e] = direct[std::size_t(from[e])];
+  }
+  solver.residual.assign(m, rgb(0.0));
+  solver.gathered.clear();
+  solver.gathered_direct.clear();
+  return true;
+}
+
 void refine_links(hierarchical_solver& solver, double tolerance) {
   if (solver.tree.nodes.empty()) return;
   std::vector<rgb> node_b(solver.tree.nodes.size());
@@ -505,6 +666,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   std::atomic<std::size_t> count{0};
   std::atomic<std::uint64_t> rays{0};
   std::atomic<bool> limit_hit{false};
+  tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>> marks;
   // The tolerance is relative to the power leaving all surfaces now (at
   // least the emitted power): at high reflectance far more power circulates
   // than is emitted, and each link's share of it is what matters.
@@ -512,7 +674,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   for (std::size_t e = 0; e < solver.radiosity.size(); ++e)
     leaving += std::max(0.0, channel_sum_of(solver.radiosity[e])) * solver.mesh->element_areas[e];
   const double power = std::max(leaving, solver.emitted_power) / 3.0;
-  refine_context ctx{solver, node_b, tolerance * power, out, count, rays, limit_hit};
+  refine_context ctx{solver, node_b, tolerance * power, out, count, rays, limit_hit, marks};
   if (solver.links.empty()) {
     refine_self(ctx, 0);
   } else {
@@ -530,6 +692,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
             (error > ctx.tolerance || (partial && solver.params.partial_factor * error > ctx.tolerance))) {
           split_pair(ctx, link.receiver, link.source);
         } else {
+          if (r.leaf() && s.leaf()) mark_split(ctx, link.receiver, link.source, est.factor, link.visibility);
           out.local().push_back(link);
           if (count.fetch_add(1, std::memory_order_relaxed) + 1 >= solver.params.max_links) limit_hit = true;
         }
@@ -541,6 +704,18 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   for (auto& part : out) links.insert(links.end(), part.begin(), part.end());
   solver.links = std::move(links);
   index_links(solver);
+  solver.split_marks.clear();
+  std::size_t marked = 0;
+  for (const auto& part : marks)
+    for (const auto& [element, bisections] : part) {
+      if (solver.split_marks.empty()) solver.split_marks.assign(solver.mesh->element_count(), 0);
+      std::uint8_t& m = solver.split_marks[std::size_t(element)];
+      marked += m == 0 ? 1 : 0;
+      m = std::max(m, std::uint8_t(bisections));
+    }
+  solver.progress.split_marks += marked;
+  if (double(marked) < solver.params.min_marked_fraction * double(solver.mesh->element_count()))
+    solver.split_marks.clear();
   solver.progress.rays += rays.load();
   ++solver.progress.refinements;
   if (limit_hit)
@@ -551,7 +726,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
 }
 
 bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
-  if (!(solver.progress.links_final && solver.residual_fraction <= 1e-13)) ++solver.progress.steps;
+  if (!(refinement_done(solver) && solver.residual_fraction <= 1e-13)) ++solver.progress.steps;
   const double final_tolerance = solver.params.tolerance;
   if (solver.link_offsets.back() == 0 && solver.progress.refinements == 0) {
     // First step: the coarsest links, then one Jacobi sweep from B = E: the direct light.
@@ -567,19 +742,25 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
     return true;
   }
   // Refine once this tolerance is solved far enough, or when iterating no
-  // longer helps (a residual that falls by less than 5% a step).
+  // longer helps (a residual that falls by less than 5% a step): first the
+  // elements the last links marked (against the solution as it is now),
+  // then the links at the next tolerance, or at the final one again.
   const bool stalled = solver.residual_fraction > 0.95 * solver.progress.previous_residual;
   solver.progress.previous_residual = solver.residual_fraction;
-  if ((solver.residual_fraction <= refine_below || stalled) && !solver.progress.links_final) {
+  if ((solver.residual_fraction <= refine_below || stalled) && !refinement_done(solver)) {
     solver.progress.previous_residual = INFINITY;
-    solver.progress.tolerance = std::max(final_tolerance, solver.progress.tolerance / solver.params.refine_factor);
-    solver.progress.links_final = solver.progress.tolerance <= final_tolerance * (1.0 + 1e-9);
-    refine_links(solver, solver.progress.tolerance);
-    update_direct(solver);
+    const bool remeshed = splits_pending(solver) && split_marked_elements(solver);
+    const double next = std::max(final_tolerance, solver.progress.tolerance / solver.params.refine_factor);
+    if (next < solver.progress.tolerance || remeshed) {
+      solver.progress.tolerance = next;
+      solver.progress.links_final = solver.progress.tolerance <= final_tolerance * (1.0 + 1e-9);
+      refine_links(solver, solver.progress.tolerance);
+      update_direct(solver);
+    }
     update_residual(solver);
     return true;
   }
-  if (solver.progress.links_final && solver.residual_fraction <= 1e-13) return false;
+  if (refinement_done(solver) && solver.residual_fraction <= 1e-13) return false;
 
   const std::size_t n = solver.mesh->element_count();
   Eigen::VectorXd b(3 * Eigen::Index(n)), x(3 * Eigen::Index(n));
@@ -594,7 +775,7 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
   bicgstab.setMaxIterations(solver.params.iterations_per_step);
   // Before the links are final, this tolerance only needs solving as far
   // as the next refinement: stop there (Eigen's relative 2-norm residual).
-  bicgstab.setTolerance(solver.progress.links_final ? 1e-14 : 0.5 * refine_below);
+  bicgstab.setTolerance(refinement_done(solver) ? 1e-14 : 0.5 * refine_below);
   bicgstab.compute(system);
   Eigen::VectorXd next = bicgstab.solveWithGuess(b, x);
   if (bicgstab.iterations() == 0) {
@@ -722,7 +903,8 @@ std::vector<rgb> element_level_solution(const hierarchical_solver& solver) {
   std::atomic<std::uint64_t> rays{0};
   std::atomic<bool> limit{false};
   std::vector<rgb> none;
-  refine_context ctx{solver, none, 0.0, unused, count, rays, limit};
+  tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>> no_marks;
+  refine_context ctx{solver, none, 0.0, unused, count, rays, limit, no_marks};
   for (std::size_t i = 0; i < n; ++i) {
     const int ri = solver.tree.leaf_of_element[i];
     for (std::size_t j = 0; j < n; ++j) {

@@ -20,6 +20,16 @@
 // iterations the links are refined with the tolerance lowered, with the
 // radiosity found so far as the oracle's B.
 //
+// Elements (lazy refinement below the input mesh): an element-to-element
+// pair that fails the oracle cannot be split in the tree, so the larger of
+// its two elements is marked with the bisections that would bring the
+// pair under the tolerance. At the next link refinement the marked
+// elements are first bisected (Rivara's conforming longest-edge
+// bisection, no element edge below min_edge), each becoming a node of the
+// tree over its pieces, the radiosity carried to the pieces; the links
+// are then refined onto them. Elements are fine only where some link
+// needs them: at contacts and shadow edges.
+//
 // Closed scenes: every element's form factors must sum to 1; the estimates
 // of coarse links do not quite, and at rho = 0.999 an error of 1e-4 in the
 // sum is 10% in B. Where the scene is closed (no sampled ray escapes it),
@@ -60,6 +70,16 @@ struct hierarchical_params {
   bool normalize_closed = true;
   // Largest final gather (kernel evaluations) made at each publication.
   std::uint64_t gather_budget = 60'000'000;
+  // Element refinement: off unless asked for (tests of the fixed mesh).
+  // min_edge 0 means the mesh's max_edge / 8.
+  bool split_elements = false;
+  double min_edge = 0.0;
+  int max_bisections = 4;  // per element and refinement
+  int max_element_passes =
+      6;  // mesh refinements in all (one with each link refinement, then more at the final tolerance)
+  // A mesh refinement makes every link again: fewer marked elements than
+  // this fraction of them do not pay for one.
+  double min_marked_fraction = 1e-3;
   bool parallel = true;
   std::uint64_t seed = 1;
 };
@@ -83,19 +103,25 @@ struct hierarchy_progress {
   std::uint64_t rays = 0;
   bool closed = false;  // the scene is closed: form factors normalised
   std::uint64_t gather_evaluations = 0;
-  std::string warning;  // e.g. the link limit was reached
+  int element_passes = 0;       // mesh refinements made
+  std::size_t split_marks = 0;  // elements marked for bisection, over all passes
+  std::string warning;          // e.g. the link limit was reached
 };
 
 struct hierarchical_solver {
-  const patch_mesh* mesh = nullptr;
+  const patch_mesh* mesh = nullptr;                // the mesh solved: the input mesh, or refined_mesh
+  const patch_mesh* input_mesh = nullptr;          // the mesher's (a restart returns to it)
+  std::shared_ptr<const patch_mesh> refined_mesh;  // the input mesh with elements split, once any are
   const scene* source = nullptr;
   hierarchical_params params;
-  std::shared_ptr<const occlusion_scene> occlusion;
-  double offset = 0.0;  // shadow-ray lift off surfaces
+  form_factor_context context;  // occlusion, shadow-ray offset and the point lights' rays
+  double min_edge = 0.0;        // resolved: elements are not split below it
   cluster_tree tree;
   std::vector<hierarchy_link> links;      // sorted by receiver
   std::vector<std::size_t> link_offsets;  // per receiver node: its links are [offsets[i], offsets[i+1])
   std::vector<int> cube_slot;             // per node: its six-bin slot, or -1 for oriented nodes
+  // Per element, the bisections the last link refinement asked for (empty: none).
+  std::vector<std::uint8_t> split_marks;
   // Working arrays of an operator application, sized with the tree (one
   // caller at a time: the solver's own thread).
   struct transport_buffers {
@@ -140,7 +166,21 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below);
 
 // Refines every link against the current solution at `tolerance` (or
 // makes the first links from the root's self-link when there are none).
+// With params.split_elements, marks the elements that element-to-element
+// links need split (split_marks).
 void refine_links(hierarchical_solver& solver, double tolerance);
+
+// Whether the links are final and no element is still to be split: the
+// solution's discretisation will not change any more.
+bool refinement_done(const hierarchical_solver& solver);
+
+// Bisects the marked elements (conforming, not below min_edge), carries
+// the radiosity over (each piece keeps its element's), extends the tree
+// with subtrees over the pieces (extend_cluster_tree: the links stay,
+// renumbered; the next refine_links splits them onto the pieces) and
+// remakes the per-element data. Returns false if nothing was split (with
+// a warning if the mesh would grow past the mesher's limit).
+bool split_marked_elements(hierarchical_solver& solver);
 
 // The operator: out = K x (x per element), K = reflect . push . gather . pull.
 void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out);

@@ -120,12 +120,21 @@ namespace {
 // radiosity of the elements, and its progress as statistics.
 void publish_hierarchical(radiosity_state& state) {
   const hierarchical_solver& h = *state.hierarchy;
+  if (state.mesh != h.mesh) {  // elements were split (or a restart went back to the input mesh)
+    state.mesh = h.mesh;
+    state.refined_mesh = h.refined_mesh;
+    state.form_factors.mesh = h.mesh;  // the same geometry: the occlusion scene stays
+    state.form_factors.vertex_areas.assign(h.mesh->vertex_count(), 0.0);
+    for (std::size_t e = 0; e < h.mesh->element_count(); ++e)
+      for (int k = 0; k < 3; ++k)
+        state.form_factors.vertex_areas[h.mesh->elements[e][k]] += h.mesh->element_areas[e] / 3.0;
+  }
   const patch_mesh& mesh = *state.mesh;
   // Once the final links are solved (the residual below the point where
   // links would be refined), the final gather: each element's light from
   // the links of it and its ancestors, the kernel evaluated at the element
   // itself. Before, the element solution as it stands.
-  if (h.progress.links_final && h.residual_fraction <= h.params.refine_below && final_gather(*state.hierarchy)) {
+  if (refinement_done(h) && h.residual_fraction <= h.params.refine_below && final_gather(*state.hierarchy)) {
     std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
     for (std::size_t e = 0; e < b.size(); ++e) {
       b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
@@ -147,7 +156,7 @@ void publish_hierarchical(radiosity_state& state) {
   state.stats.rays = h.progress.rays;
   state.stats.links = h.links.size();
   state.stats.link_tolerance = h.progress.tolerance;
-  state.stats.links_final = h.progress.links_final;
+  state.stats.links_final = refinement_done(h);
   state.balance = {};
   state.balance.emitted = rgb(h.emitted_power / 3.0);
 }

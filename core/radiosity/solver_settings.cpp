@@ -28,10 +28,11 @@ mesher_params mesher_params_for(const solver_settings& settings, const scene& s)
     return p;
   }
   if (settings.method == solver_method::hierarchical) {
-    // The elements are the hierarchy's finest level: links decide where
-    // the solution is resolved, so the elements can be small.
+    // The elements are the hierarchy's finest level, and are split where
+    // links need them: they start at the uniform default.
     p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : hierarchical_max_edge(s);
     p.patch_edge = 0.0;
+    p.solver_min_edge = settings.adaptive.min_edge;
     return p;
   }
   p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : default_max_edge(s);
@@ -48,6 +49,8 @@ radiosity_params radiosity_params_for(const solver_settings& settings) {
   p.form_factors = settings.form_factors;
   p.adaptive = settings.adaptive;
   p.hierarchical.tolerance = settings.link_tolerance;
+  p.hierarchical.split_elements = true;
+  p.hierarchical.min_edge = settings.adaptive.min_edge;
   // Each tolerance is solved to the run's stopping point, or 2%, before
   // the links are refined further.
   p.hierarchical.refine_below = std::max(settings.stop.unshot_fraction, 0.02);

@@ -16,7 +16,7 @@ double default_max_edge(const scene& s) {
 }
 
 double hierarchical_max_edge(const scene& s) {
-  return default_max_edge(s) * 24.0 / 64.0;
+  return default_max_edge(s) * 24.0 / 10.0;
 }
 
 std::string summarize_scene(const scene& s, double max_edge, scene_summary& out) {

@@ -13,9 +13,9 @@ namespace bounce {
 // box diagonal (about 40 mm in the Cornell box).
 double default_max_edge(const scene& s);
 
-// The hierarchical solver's finest element size when none is asked for:
-// 1/64 of the diagonal (15 mm in the Cornell box); links, not elements,
-// decide where the solution is resolved.
+// The hierarchical solver's starting element size when none is asked for:
+// 1/10 of the diagonal (96 mm in the Cornell box). Elements are split
+// where links need them (down to an eighth of it by default).
 double hierarchical_max_edge(const scene& s);
 
 struct scene_summary {

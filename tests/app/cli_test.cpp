@@ -291,7 +291,7 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"view --still a.png", "--still requires --frames"},
       {"view --exit", "--exit requires --frames"},
       {"solve --tolerance 0.3", "--tolerance requires --adaptive"},
-      {"render --min-edge 5", "--min-edge requires --adaptive"},
+      {"render --solver progressive --min-edge 5", "--min-edge applies to --solver hierarchical or --adaptive only"},
       {"solve --method hemicube --rays 4", "--rays applies to --method raycast only"},
       {"trace --method hemicube --full-rays", "--full-rays applies to --method raycast only"},
       {"view --hemicube 64", "--hemicube applies to --method hemicube only"},
@@ -573,10 +573,13 @@ TEST(Cli, AdaptiveMeshingRefinesInSolveRenderAndTrace) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("radiosity: "), std::string::npos) << r.out;
 
-  // A minimum edge the mesher cannot honour is a clear error, not a hang.
-  r = run("solve --adaptive --max-edge 150 --min-edge 0.01");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("--min-edge"), std::string::npos) << r.err;
+  // A minimum edge the mesher cannot honour is a clear error, not a hang,
+  // with either solver.
+  for (const char* solver : {"--adaptive", "--solver hierarchical"}) {
+    r = run(std::string("solve ") + solver + " --max-edge 150 --min-edge 0.01");
+    EXPECT_EQ(r.code, 1) << solver;
+    EXPECT_NE(r.err.find("--min-edge"), std::string::npos) << solver << ": " << r.err;
+  }
 }
 
 TEST(Cli, SolveStopsAtTheShotLimitAndComparesWithTheReference) {
