@@ -341,13 +341,25 @@ om_mesh::HalfedgeHandle longest_halfedge(const om_mesh& m, om_mesh::FaceHandle f
 }  // namespace
 
 bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min_edge, std::vector<int>& origin,
-                       std::string& error) {
+                       std::string& error, std::span<const int> times) {
   const std::size_t old_vertices = mesh.vertex_count();
+  const std::size_t old_elements = mesh.element_count();
+  // Surfaces share no vertices, so a bisection never leaves its surface:
+  // only the surfaces with a marked element need the half-edge structure
+  // (a large scene refined in a few places stays cheap).
+  int surfaces = 0;
+  for (int surface : mesh.element_surfaces) surfaces = std::max(surfaces, surface + 1);
+  std::vector<bool> touched(std::size_t(surfaces), false);
+  for (int e : marked)
+    if (e >= 0 && std::size_t(e) < old_elements) touched[std::size_t(mesh.element_surfaces[std::size_t(e)])] = true;
+
   om_mesh m;
   OpenMesh::VPropHandleT<int> parent;  // the old vertex whose surface, material and normal side it shares
   OpenMesh::VPropHandleT<vec3> normal;
   OpenMesh::FPropHandleT<int> face_origin, face_surface, face_material, face_patch;
-  OpenMesh::FPropHandleT<bool> face_split;  // bisected in this pass (copied to both children)
+  OpenMesh::FPropHandleT<bool> face_split;    // bisected in this round (copied to both children)
+  OpenMesh::FPropHandleT<bool> face_changed;  // bisected in any round
+  OpenMesh::FPropHandleT<int> face_rounds;    // bisections still asked for
   m.add_property(parent);
   m.add_property(normal);
   m.add_property(face_origin);
@@ -355,24 +367,37 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   m.add_property(face_material);
   m.add_property(face_patch);
   m.add_property(face_split);
+  m.add_property(face_changed);
+  m.add_property(face_rounds);
   for (std::size_t v = 0; v < old_vertices; ++v) {
     om_mesh::VertexHandle h = m.add_vertex(to_om(mesh.positions[v]));
     m.property(parent, h) = int(v);
     m.property(normal, h) = mesh.normals[v];
   }
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+  std::vector<int> face_of(old_elements, -1);
+  for (std::size_t e = 0; e < old_elements; ++e) {
+    if (!touched[std::size_t(mesh.element_surfaces[e])]) continue;
     const glm::ivec3 t = mesh.elements[e];
     om_mesh::FaceHandle f =
         m.add_face(om_mesh::VertexHandle(t[0]), om_mesh::VertexHandle(t[1]), om_mesh::VertexHandle(t[2]));
-    if (!f.is_valid() || f.idx() != int(e)) {
+    if (!f.is_valid()) {
       error = "element " + std::to_string(e) + " cannot be rebuilt for refinement (non-manifold)";
       return false;
     }
+    face_of[e] = f.idx();
     m.property(face_origin, f) = int(e);
     m.property(face_surface, f) = mesh.element_surfaces[e];
     m.property(face_material, f) = mesh.element_materials[e];
     m.property(face_patch, f) = mesh.element_patches[e];
     m.property(face_split, f) = false;
+    m.property(face_changed, f) = false;
+    m.property(face_rounds, f) = 0;
+  }
+  for (std::size_t i = 0; i < marked.size(); ++i) {
+    const int e = marked[i];
+    if (e < 0 || std::size_t(e) >= old_elements) continue;
+    int& rounds = m.property(face_rounds, om_mesh::FaceHandle(face_of[std::size_t(e)]));
+    rounds = std::max(rounds, times.empty() ? 1 : times[i]);
   }
 
   // Rivara's LEPP bisection: follow the longest-edge propagation path from
@@ -388,34 +413,49 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
     m.property(normal, mid) = glm::normalize(m.property(normal, a) + m.property(normal, b));
     for (int side = 0; side < 2; ++side) {
       om_mesh::FaceHandle f = m.face_handle(m.halfedge_handle(e, side));
-      if (f.is_valid()) m.property(face_split, f) = true;
+      if (f.is_valid()) m.property(face_split, f) = m.property(face_changed, f) = true;
     }
     m.split_copy(e, mid);
   };
   const double min_length = min_edge * min_edge;
-  std::vector<om_mesh::FaceHandle> path;
-  for (int e : marked) {
-    om_mesh::FaceHandle f(e);
-    if (e < 0 || std::size_t(e) >= mesh.element_count() || m.property(face_split, f)) continue;
-    if (m.calc_edge_sqr_length(longest_halfedge(m, f)) <= min_length) continue;
-    path.assign(1, f);
-    while (!path.empty()) {
-      om_mesh::FaceHandle t = path.back();
-      om_mesh::HalfedgeHandle h = longest_halfedge(m, t);
-      om_mesh::FaceHandle next = m.opposite_face_handle(h);
-      if (next.is_valid() && m.edge_handle(longest_halfedge(m, next)) != m.edge_handle(h)) {
-        path.push_back(next);
-        continue;
+  const std::size_t untouched = std::size_t(std::count(face_of.begin(), face_of.end(), -1));
+  std::vector<om_mesh::FaceHandle> path, round;
+  for (;;) {
+    // One round: every face still asking for a bisection gets one; its
+    // two halves then ask for one fewer.
+    round.clear();
+    for (om_mesh::FaceHandle f : m.faces())
+      if (m.property(face_rounds, f) > 0) round.push_back(f);
+    if (round.empty()) break;
+    for (om_mesh::FaceHandle f : m.faces()) m.property(face_split, f) = false;
+    for (om_mesh::FaceHandle f : round) {
+      if (m.property(face_split, f)) continue;  // already split on another face's path
+      if (m.calc_edge_sqr_length(longest_halfedge(m, f)) <= min_length) continue;
+      path.assign(1, f);
+      while (!path.empty()) {
+        om_mesh::FaceHandle t = path.back();
+        om_mesh::HalfedgeHandle h = longest_halfedge(m, t);
+        om_mesh::FaceHandle next = m.opposite_face_handle(h);
+        if (next.is_valid() && m.edge_handle(longest_halfedge(m, next)) != m.edge_handle(h)) {
+          path.push_back(next);
+          continue;
+        }
+        split(m.edge_handle(h));
+        path.pop_back();
+        // The marked face is done once it is split; faces earlier on the path
+        // were only there to reach it.
+        if (!path.empty() && m.property(face_split, path.front())) break;
       }
-      split(m.edge_handle(h));
-      path.pop_back();
-      // The marked face is done once it is split; faces earlier on the path
-      // were only there to reach it.
-      if (!path.empty() && m.property(face_split, path.front())) break;
+      if (untouched + m.n_faces() > max_patch_elements) {
+        error = "refinement would exceed " + std::to_string(max_patch_elements) + " elements; use a larger --min-edge";
+        return false;
+      }
     }
-    if (m.n_faces() > max_patch_elements) {
-      error = "refinement would exceed " + std::to_string(max_patch_elements) + " elements; use a larger --min-edge";
-      return false;
+    // Faces split (for themselves or for a neighbour) use up a round;
+    // marked faces that could not be split (at the minimum edge) stop.
+    for (om_mesh::FaceHandle f : m.faces()) {
+      int& rounds = m.property(face_rounds, f);
+      rounds = m.property(face_split, f) ? std::max(0, rounds - 1) : 0;
     }
   }
 
@@ -451,12 +491,19 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   out.patch_areas = std::move(mesh.patch_areas);
   std::vector<bool> patch_taken(patch_size.size(), false);
   origin.clear();
+  // The untouched surfaces' elements first, as they were; then the faces
+  // of the refined surfaces.
+  for (std::size_t e = 0; e < old_elements; ++e) {
+    if (face_of[e] >= 0) continue;
+    append_element(out, mesh.elements[e], mesh.element_surfaces[e], mesh.element_materials[e], mesh.element_patches[e]);
+    origin.push_back(int(e));
+  }
   for (om_mesh::FaceHandle f : m.faces()) {
     const glm::ivec3 tri = face_vertices(m, f);
     int patch = m.property(face_patch, f);
     append_element(out, tri, m.property(face_surface, f), m.property(face_material, f), patch);
     origin.push_back(m.property(face_origin, f));
-    if (patch_size[patch] == 1 && m.property(face_split, f)) {
+    if (patch_size[patch] == 1 && m.property(face_changed, f)) {
       if (patch_taken[patch]) {
         patch = int(out.patch_areas.size());
         out.patch_corners.emplace_back();

@@ -100,10 +100,14 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
 // parent's surface, material and the mean of the two normals); elements are
 // renumbered and origin[e] names the element of the old mesh that contains
 // e. Patches stay (their elements still tile them), except that a patch
-// that was a single element follows its element's split. Returns false with
-// `error` past max_patch_elements.
+// that was a single element follows its element's split. With `times`
+// (one per marked element), element marked[i] is bisected times[i] times:
+// in rounds, each splitting once every piece still asking. Only the
+// surfaces holding a marked element are rebuilt (surfaces share no
+// vertices); the other elements come first in the new order, as they were.
+// Returns false with `error` past max_patch_elements.
 bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min_edge, std::vector<int>& origin,
-                       std::string& error);
+                       std::string& error, std::span<const int> times = {});
 
 // Barycentric coordinates of `point` (projected onto the element's plane).
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point);

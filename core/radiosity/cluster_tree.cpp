@@ -69,6 +69,7 @@ struct tree_builder {
     int old_node;  // -1: a range of order
     std::size_t begin, end;
     int depth;
+    bool piece = false;  // under a split element
   };
 
   explicit tree_builder(const patch_mesh& m) : mesh(m) {
@@ -93,6 +94,7 @@ struct tree_builder {
       if (r.old_node >= 0) {
         (*node_of_old)[std::size_t(r.old_node)] = r.node;
         const cluster_node& o = old->nodes[std::size_t(r.old_node)];
+        r.piece = o.piece;
         if (!o.leaf()) {
           const int first = int(tree.nodes.size());
           tree.nodes.resize(tree.nodes.size() + std::size_t(o.child_count));
@@ -106,7 +108,9 @@ struct tree_builder {
         }
         r.begin = piece_start[std::size_t(o.element)];
         r.end = piece_start[std::size_t(o.element) + 1];
+        r.piece = r.piece || r.end - r.begin > 1;
       }
+      tree.nodes[r.node].piece = r.piece;
       if (r.end - r.begin == 1) {
         fill_leaf(tree.nodes[r.node], mesh, order[r.begin]);
         tree.leaf_of_element[order[r.begin]] = r.node;
@@ -129,8 +133,8 @@ struct tree_builder {
       tree.nodes[r.node].first_child = first;
       tree.nodes[r.node].child_count = 2;
       tree.nodes[first].parent = tree.nodes[first + 1].parent = r.node;
-      pending.push_back({first, -1, r.begin, middle, r.depth + 1});
-      pending.push_back({first + 1, -1, middle, r.end, r.depth + 1});
+      pending.push_back({first, -1, r.begin, middle, r.depth + 1, r.piece});
+      pending.push_back({first + 1, -1, middle, r.end, r.depth + 1, r.piece});
     }
     tree.levels.push_back(int(tree.nodes.size()));
     finish(tree);

@@ -32,6 +32,9 @@ struct cluster_node {
   // sum of area x max(0, +-n_k). A direction d sees about
   // sum_k |d_k| x projected[side of d_k][k] (exact for axis-aligned members).
   std::array<double, 6> projected{};
+  // Under an element split while solving (extend_cluster_tree): its pieces
+  // exist for how the light varies over them, and are refined by that.
+  bool piece = false;
 
   bool leaf() const { return child_count == 0; }
   double radius() const { return 0.5 * glm::length(hi - lo); }

@@ -280,6 +280,67 @@ float visibility(refine_context& ctx, int i, int j, int count) {
   return float(open_rays) / float(count);
 }
 
+// What the oracle charges a pair. `bf` is BF refinement's F x B x A; it
+// decides, except where the side a split would divide is a piece of an
+// element split while solving (cluster_node::piece): pieces exist for how
+// light varies over them, so a piece receiver is charged the variation of
+// the form factor over its sample points times B x A, and a piece source
+// is not divided for the light it carries (its pieces send their mean).
+// Partly visible pairs are split on `bf` everywhere: shadows need pieces.
+struct pair_error {
+  double bf = 0.0;
+  double split = 0.0;
+};
+
+double factor_variation(const hierarchical_solver& solver, int i, int j) {
+  const cluster_tree& tree = solver.tree;
+  const cluster_node& r = tree.nodes[std::size_t(i)];
+  const cluster_node& s = tree.nodes[std::size_t(j)];
+  const patch_mesh& mesh = *solver.mesh;
+  vec3 polygon[3];
+  if (s.leaf()) {
+    const glm::ivec3 t = mesh.elements[std::size_t(s.element)];
+    polygon[0] = mesh.positions[t[0]];
+    polygon[1] = mesh.positions[t[1]];
+    polygon[2] = mesh.positions[t[2]];
+  }
+  auto factor_at = [&](const vec3& p) {
+    if (s.leaf()) return point_polygon_form_factor(p, r.normal, polygon);
+    const vec3 d = s.centroid - p;
+    const double r2 = glm::dot(d, d);
+    const vec3 dir = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
+    const double send = projected_area(s, -dir);
+    return std::min(1.0, std::max(0.0, glm::dot(r.normal, dir)) * send / (std::numbers::pi * r2 + send));
+  };
+  double lo = INFINITY, hi = -INFINITY;
+  auto add = [&](const vec3& p) {
+    const double f = factor_at(p);
+    if (!std::isfinite(f)) return;
+    lo = std::min(lo, f);
+    hi = std::max(hi, f);
+  };
+  add(r.centroid);
+  for (int element : tree.strata[std::size_t(i)]) {
+    const glm::ivec3 t = mesh.elements[std::size_t(element)];
+    add((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0);
+  }
+  return hi > lo ? hi - lo : 0.0;
+}
+
+pair_error charge(const hierarchical_solver& solver, const std::vector<rgb>& node_b, int i, int j,
+                  const link_estimate& e) {
+  const cluster_node& r = solver.tree.nodes[std::size_t(i)];
+  const cluster_node& s = solver.tree.nodes[std::size_t(j)];
+  pair_error out;
+  const double transfer = r.area * channel_max(node_b[std::size_t(j)]);
+  out.bf = out.split = e.bound * transfer;
+  if (r.leaf() && s.leaf()) return out;
+  const bool receiver = !r.leaf() && (s.leaf() || r.area >= s.area);  // as split_pair chooses
+  if (!(receiver ? r : s).piece) return out;
+  out.split = receiver && out.bf > 0.0 ? factor_variation(solver, i, j) * transfer : 0.0;
+  return out;
+}
+
 void refine_pair(refine_context& ctx, int i, int j);
 
 void split_pair(refine_context& ctx, int i, int j) {
@@ -303,13 +364,13 @@ void refine_pair(refine_context& ctx, int i, int j) {
   const cluster_node& r = ctx.solver.tree.nodes[i];
   const cluster_node& s = ctx.solver.tree.nodes[j];
   const bool splittable = !(r.leaf() && s.leaf()) && !ctx.limit_hit.load(std::memory_order_relaxed);
-  const double error = e.bound * r.area * channel_max(ctx.node_b[j]);
-  if (splittable && (error > ctx.tolerance)) return split_pair(ctx, i, j);
+  const pair_error error = charge(ctx.solver, ctx.node_b, i, j, e);
+  if (splittable && (error.split > ctx.tolerance)) return split_pair(ctx, i, j);
   const bool leaves = r.leaf() && s.leaf();
   const int rays = leaves ? ctx.solver.params.leaf_visibility_rays : ctx.solver.params.visibility_rays;
   const float v = visibility(ctx, i, j, rays);
   // Partly visible links must carry less (params.partial_factor).
-  if (splittable && v > 0.0f && v < 1.0f && ctx.solver.params.partial_factor * error > ctx.tolerance)
+  if (splittable && v > 0.0f && v < 1.0f && ctx.solver.params.partial_factor * error.bf > ctx.tolerance)
     return split_pair(ctx, i, j);
   // A pair whose estimate is 0 but that is not culled is kept: parts of
   // it may face each other, and a later refinement (with more light) splits it.
@@ -402,14 +463,22 @@ void update_residual(hierarchical_solver& solver) {
   std::vector<rgb> kx;
   apply_transport(solver, solver.radiosity, kx);
   ++solver.progress.operator_applications;
-  double power = 0.0;
   solver.residual.resize(kx.size());
-  for (std::size_t e = 0; e < kx.size(); ++e) {
-    solver.residual[e] = solver.emission[e] + solver.lamp[e] + kx[e] - solver.radiosity[e];
-    const rgb& r = solver.residual[e];
-    power += (std::abs(r.r) + std::abs(r.g) + std::abs(r.b)) * mesh.element_areas[e];
-  }
-  solver.residual_fraction = solver.emitted_power > 0.0 ? power / solver.emitted_power : 0.0;
+  // Summed per block, then over the blocks in order: the same total on
+  // any number of threads.
+  const std::size_t block = 16384, blocks = (kx.size() + block - 1) / block;
+  std::vector<double> power(blocks, 0.0);
+  for_each_block(solver.params.parallel, blocks, 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k)
+      for (std::size_t el = k * block; el < std::min(kx.size(), (k + 1) * block); ++el) {
+        solver.residual[el] = solver.emission[el] + solver.lamp[el] + kx[el] - solver.radiosity[el];
+        const rgb& r = solver.residual[el];
+        power[k] += (std::abs(r.r) + std::abs(r.g) + std::abs(r.b)) * mesh.element_areas[el];
+      }
+  });
+  double total = 0.0;
+  for (double p : power) total += p;
+  solver.residual_fraction = solver.emitted_power > 0.0 ? total / solver.emitted_power : 0.0;
 }
 
 void update_direct(hierarchical_solver& solver) {
@@ -456,10 +525,15 @@ class transport_system : public Eigen::EigenBase<transport_system> {
     const std::size_t n = solver_->mesh->element_count();
     std::vector<rgb>& x = x_;
     x.resize(n);
-    for (std::size_t e = 0; e < n; ++e) x[e] = rgb(in[3 * e], in[3 * e + 1], in[3 * e + 2]);
+    const bool parallel = solver_->params.parallel;
+    for_each_block(parallel, n, 16384, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) x[i] = rgb(in[3 * i], in[3 * i + 1], in[3 * i + 2]);
+    });
     apply_transport(*solver_, x, kx_);
-    for (std::size_t e = 0; e < n; ++e)
-      for (int c = 0; c < 3; ++c) out[3 * e + c] = x[e][c] - kx_[e][c];
+    for_each_block(parallel, n, 16384, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        for (int c = 0; c < 3; ++c) out[3 * i + c] = x[i][c] - kx_[i][c];
+    });
     ++applications;
   }
   mutable std::uint64_t applications = 0;
@@ -490,7 +564,9 @@ namespace bounce {
 
 void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
   gather_push(solver, x, out);
-  for (std::size_t e = 0; e < out.size(); ++e) out[e] = solver.rho[e] * (out[e] * solver.normalizer[e]);
+  for_each_block(solver.params.parallel, out.size(), 16384, [&](std::size_t b, std::size_t end) {
+    for (std::size_t e = b; e < end; ++e) out[e] = solver.rho[e] * (out[e] * solver.normalizer[e]);
+  });
 }
 
 namespace {
@@ -592,38 +668,16 @@ bool split_marked_elements(hierarchical_solver& solver) {
   if (solver.split_marks.empty()) return false;
   const std::size_t n = solver.mesh->element_count();
   auto refined = std::make_shared<patch_mesh>(*solver.mesh);
-  std::vector<int> from(n);  // per element of `refined`: the element of solver.mesh it lies in
-  std::iota(from.begin(), from.end(), 0);
-  std::vector<std::uint8_t> remaining = solver.split_marks;
-  std::vector<int> origin, marked, pieces;
+  std::vector<int> marked, times, from;  // from[e]: the element of solver.mesh that element e lies in
+  for (std::size_t e = 0; e < n; ++e)
+    if (solver.split_marks[e] > 0) {
+      marked.push_back(int(e));
+      times.push_back(solver.split_marks[e]);
+    }
   std::string error;
-  bool split = false;
-  for (int pass = 0; pass < solver.params.max_bisections; ++pass) {
-    marked.clear();
-    for (std::size_t e = 0; e < remaining.size(); ++e)
-      if (remaining[e] > 0) marked.push_back(int(e));
-    if (marked.empty()) break;
-    const std::size_t before = refined->element_count();
-    if (!refine_patch_mesh(*refined, marked, solver.min_edge, origin, error)) {
-      solver.progress.warning = "element refinement stopped: " + error;
-      break;
-    }
-    // Pieces of a split element take one bisection less than it still needed.
-    pieces.assign(before, 0);
-    for (int o : origin) ++pieces[std::size_t(o)];
-    std::vector<int> next_from(origin.size());
-    std::vector<std::uint8_t> next_remaining(origin.size());
-    for (std::size_t e = 0; e < origin.size(); ++e) {
-      const int o = origin[e];
-      next_from[e] = from[std::size_t(o)];
-      next_remaining[e] =
-          pieces[std::size_t(o)] > 1 && remaining[std::size_t(o)] > 0 ? remaining[std::size_t(o)] - 1 : 0;
-    }
-    from = std::move(next_from);
-    remaining = std::move(next_remaining);
-    if (refined->element_count() == before) break;
-    split = true;
-  }
+  bool split = refine_patch_mesh(*refined, marked, solver.min_edge, from, error, times);
+  if (!split) solver.progress.warning = "element refinement stopped: " + error;
+  split = split && refined->element_count() > n;
   solver.split_marks.clear();
   ++solver.progress.element_passes;
   if (!split) return false;
@@ -686,10 +740,10 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
         const cluster_node& s = solver.tree.nodes[link.source];
         const bool splittable = !(r.leaf() && s.leaf()) && !limit_hit.load(std::memory_order_relaxed);
         const link_estimate est = estimate(solver, link.receiver, link.source);
-        const double error = est.bound * r.area * channel_max(node_b[link.source]);
+        const pair_error error = charge(solver, node_b, link.receiver, link.source, est);
         const bool partial = link.visibility > 0.0f && link.visibility < 1.0f;
         if (splittable &&
-            (error > ctx.tolerance || (partial && solver.params.partial_factor * error > ctx.tolerance))) {
+            (error.split > ctx.tolerance || (partial && solver.params.partial_factor * error.bf > ctx.tolerance))) {
           split_pair(ctx, link.receiver, link.source);
         } else {
           if (r.leaf() && s.leaf()) mark_split(ctx, link.receiver, link.source, est.factor, link.visibility);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -148,6 +149,44 @@ TEST(Adaptive, BisectionKeepsTheMeshConformingAndItsArea) {
       smallest = std::min(smallest, glm::degrees(std::acos(std::clamp(glm::dot(u, w), -1.0, 1.0))));
     }
   EXPECT_GT(smallest, 5.0);
+}
+
+TEST(Adaptive, RepeatedBisectionInOneCallStaysConformingAndLeavesOtherSurfacesAlone) {
+  const scene s = load(default_scene_path);
+  const patch_mesh before = mesh_of(s, 120.0, 480.0);
+  patch_mesh mesh = before;
+  const std::vector<int> marked = {0, int(before.element_count() / 2)};
+  const std::vector<int> times = {4, 2};
+  std::vector<int> origin;
+  std::string error;
+  ASSERT_TRUE(refine_patch_mesh(mesh, marked, 1.0, origin, error, times)) << error;
+  ASSERT_EQ(origin.size(), mesh.element_count());
+  EXPECT_EQ(hanging_vertices(mesh), 0u);
+  // Each round splits every piece still asking once: at least 2^times pieces.
+  for (std::size_t i = 0; i < marked.size(); ++i) {
+    std::size_t pieces = 0;
+    double area = 0.0;
+    for (std::size_t e = 0; e < mesh.element_count(); ++e)
+      if (origin[e] == marked[i]) {
+        ++pieces;
+        area += mesh.element_areas[e];
+      }
+    EXPECT_GE(pieces, std::size_t(1) << times[i]) << i;
+    EXPECT_NEAR(area, before.element_areas[std::size_t(marked[i])], 1e-9 * area) << i;
+  }
+  // Surfaces without a mark keep their elements exactly.
+  std::set<int> touched;
+  for (int e : marked) touched.insert(before.element_surfaces[std::size_t(e)]);
+  std::size_t kept = 0, expected = 0;
+  for (std::size_t e = 0; e < before.element_count(); ++e)
+    expected += touched.count(before.element_surfaces[e]) ? 0 : 1;
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const int o = origin[e];
+    if (touched.count(before.element_surfaces[std::size_t(o)])) continue;
+    ASSERT_EQ(mesh.elements[e], before.elements[std::size_t(o)]);
+    ++kept;
+  }
+  EXPECT_EQ(kept, expected);
 }
 
 TEST(Adaptive, SolvedCornellMeshIsConformingWithItsAreaKept) {
