@@ -4,6 +4,10 @@ noperspective centroid in vec4 radiance_w;
 noperspective centroid in vec4 unshot_w;
 noperspective centroid in vec3 normal_w;
 noperspective centroid in vec3 position_w;
+smooth centroid in vec3 radiance_s;  // the fallback: see gouraud.vert
+smooth centroid in vec4 unshot_s;
+smooth centroid in vec3 normal_s;
+smooth centroid in vec3 position_s;
 
 uniform float exposure;
 uniform int tone_curve;        // 0: clamp + sRGB, 1: filmic (ACES fit) + sRGB, 2: linear radiance (PFM)
@@ -37,6 +41,15 @@ void main() {
   float vertex_element_size = unshot_w.w * w;
   vec3 world_normal = normal_w * w;
   vec3 world_position = position_w * w;
+  // Where the clipper left no quotient (see gouraud.vert): GL's own values.
+  vec4 check = vec4(vertex_radiance, vertex_element_size) + vec4(vertex_unshot, 0.0);
+  if (!(radiance_w.w > 0.0) || any(isnan(check)) || any(isinf(check))) {
+    vertex_radiance = radiance_s;
+    vertex_unshot = unshot_s.xyz;
+    vertex_element_size = unshot_s.w;
+    world_normal = normal_s;
+    world_position = position_s;
+  }
   if (highlight_back_faces != 0 && dot(world_normal, eye - world_position) < 0.0) {
     fragment = vec4(1.0, 0.0, 1.0, 1.0);  // magenta: a flipped normal faces the camera
     return;

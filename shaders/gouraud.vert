@@ -22,6 +22,15 @@ noperspective centroid out vec4 radiance_w;  // (B / pi in W / (m^2 sr), 1) / w
 noperspective centroid out vec4 unshot_w;    // (unshot / pi, element size) / w
 noperspective centroid out vec3 normal_w;
 noperspective centroid out vec3 position_w;
+// The same values interpolated by GL itself (perspective-correct), for the
+// few fragments where the quotients above are not finite: Mesa's clipper
+// finds its blend factor for noperspective values from a difference of
+// screen x (or y), 0 / 0 on an edge that is clipped where its two ends
+// land in the same column, and a vertex at w = 0 has no quotient at all.
+smooth centroid out vec3 radiance_s;
+smooth centroid out vec4 unshot_s;
+smooth centroid out vec3 normal_s;
+smooth centroid out vec3 position_s;
 
 void main() {
   const float pi = 3.14159265358979;
@@ -31,4 +40,8 @@ void main() {
   unshot_w = vec4(unshot / pi, element_size) * inv_w;
   normal_w = normal * inv_w;
   position_w = position * inv_w;
+  radiance_s = (radiosity + reflectance * ambient) / pi;
+  unshot_s = vec4(unshot / pi, element_size);
+  normal_s = normal;
+  position_s = position;
 }
