@@ -27,14 +27,14 @@ struct cluster_node {
   vec3 lo{0.0}, hi{0.0};
   // Oriented nodes: every element faces `normal` (within 1e-3 rad).
   bool oriented = false;
+  // Under an element split while solving (extend_cluster_tree): its pieces
+  // exist for how the light varies over them, and are refined by that.
+  bool piece = false;
   vec3 normal{0.0};
   // Members' area seen from the six axis directions +x, -x, +y, -y, +z, -z:
   // sum of area x max(0, +-n_k). A direction d sees about
   // sum_k |d_k| x projected[side of d_k][k] (exact for axis-aligned members).
   std::array<double, 6> projected{};
-  // Under an element split while solving (extend_cluster_tree): its pieces
-  // exist for how the light varies over them, and are refined by that.
-  bool piece = false;
 
   bool leaf() const { return child_count == 0; }
   double radius() const { return 0.5 * glm::length(hi - lo); }
