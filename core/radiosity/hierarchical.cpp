@@ -589,6 +589,7 @@ void build_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
   solver.links.clear();
   solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
   solver.split_marks.clear();
+  solver.split_roots.clear();
 
   const std::size_t n = mesh.element_count();
   solver.rho.resize(n);
@@ -688,6 +689,10 @@ bool split_marked_elements(hierarchical_solver& solver) {
   // piecewise-constant solution is unchanged, and iterating goes on from it.
   std::vector<int> node_of_old;
   cluster_tree tree = extend_cluster_tree(solver.tree, *refined, from, node_of_old);
+  std::vector<std::uint8_t> split_roots(tree.nodes.size(), 0);
+  for (std::size_t o = 0; o < node_of_old.size(); ++o)
+    if (solver.tree.nodes[o].leaf() && !tree.nodes[std::size_t(node_of_old[o])].leaf())
+      split_roots[std::size_t(node_of_old[o])] = 1;
   std::vector<hierarchy_link> links = std::move(solver.links);
   for (hierarchy_link& link : links) {
     link.receiver = node_of_old[std::size_t(link.receiver)];
@@ -736,6 +741,12 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
     for_each_block(solver.params.parallel, old.size(), 256, [&](std::size_t b, std::size_t e) {
       for (std::size_t l = b; l < e; ++l) {
         const hierarchy_link& link = old[l];
+        if (!solver.split_roots.empty() && !solver.split_roots[std::size_t(link.receiver)] &&
+            !solver.split_roots[std::size_t(link.source)]) {
+          out.local().push_back(link);  // examined at this tolerance already
+          count.fetch_add(1, std::memory_order_relaxed);
+          continue;
+        }
         const cluster_node& r = solver.tree.nodes[link.receiver];
         const cluster_node& s = solver.tree.nodes[link.source];
         const bool splittable = !(r.leaf() && s.leaf()) && !limit_hit.load(std::memory_order_relaxed);
@@ -758,6 +769,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   for (auto& part : out) links.insert(links.end(), part.begin(), part.end());
   solver.links = std::move(links);
   index_links(solver);
+  solver.split_roots.clear();
   solver.split_marks.clear();
   std::size_t marked = 0;
   for (const auto& part : marks)
@@ -806,6 +818,7 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
     const bool remeshed = splits_pending(solver) && split_marked_elements(solver);
     const double next = std::max(final_tolerance, solver.progress.tolerance / solver.params.refine_factor);
     if (next < solver.progress.tolerance || remeshed) {
+      if (next < solver.progress.tolerance) solver.split_roots.clear();  // a new tolerance: every link
       solver.progress.tolerance = next;
       solver.progress.links_final = solver.progress.tolerance <= final_tolerance * (1.0 + 1e-9);
       refine_links(solver, solver.progress.tolerance);

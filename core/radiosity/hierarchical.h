@@ -122,6 +122,10 @@ struct hierarchical_solver {
   std::vector<int> cube_slot;             // per node: its six-bin slot, or -1 for oriented nodes
   // Per element, the bisections the last link refinement asked for (empty: none).
   std::vector<std::uint8_t> split_marks;
+  // Per node, after elements were split: 1 for the leaves that became the
+  // roots of their pieces. A link refinement at the same tolerance then
+  // looks only at their links (empty: at every link).
+  std::vector<std::uint8_t> split_roots;
   // Working arrays of an operator application, sized with the tree (one
   // caller at a time: the solver's own thread).
   struct transport_buffers {
