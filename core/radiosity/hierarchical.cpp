@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -21,14 +21,15 @@
 // radiosity found so far as the oracle's B.
 //
 // Elements (lazy refinement below the input mesh): an element-to-element
-// pair that fails the oracle cannot be split in the tree, so the larger of
-// its two elements is marked with the bisections that would bring the
-// pair under the tolerance. At the next link refinement the marked
-// elements are first bisected (Rivara's conforming longest-edge
-// bisection, no element edge below min_edge), each becoming a node of the
-// tree over its pieces, the radiosity carried to the pieces; the links
-// are then refined onto them. Elements are fine only where some link
-// needs them: at contacts and shadow edges.
+// pair cannot be split in the tree. Where the light it carries matters and
+// is partly shadowed or varies over the receiving element, that element
+// is marked with the bisections that would bring the error under the
+// tolerance (evenly lit elements never are). At the next link refinement
+// the marked elements are first bisected (Rivara's conforming
+// longest-edge bisection, no element edge below min_edge), each becoming
+// a node of the tree over its pieces, the radiosity carried to the
+// pieces; the links are then refined onto them. Elements are fine only
+// where some link needs them: at contacts, shadow edges and gradients.
 //
 // Closed scenes: every element's form factors must sum to 1; the estimates
 // of coarse links do not quite, and at rho = 0.999 an error of 1e-4 in the
@@ -75,10 +76,11 @@ struct hierarchical_params {
   bool split_elements = false;
   double min_edge = 0.0;
   int max_bisections = 4;  // per element and refinement
-  int max_element_passes =
-      6;  // mesh refinements in all (one with each link refinement, then more at the final tolerance)
-  // A mesh refinement makes every link again: fewer marked elements than
-  // this fraction of them do not pay for one.
+  // Mesh refinements in all: one with each link refinement, then more at
+  // the final tolerance.
+  int max_element_passes = 6;
+  // Fewer marked elements than this fraction of them do not pay for a
+  // mesh refinement (a copy of the mesh, an extended tree).
   double min_marked_fraction = 1e-3;
   bool parallel = true;
   std::uint64_t seed = 1;
