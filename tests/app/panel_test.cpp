@@ -17,10 +17,6 @@
 namespace bounce {
 namespace {
 
-scene cornell() {
-  return testing::default_cornell_box();
-}
-
 solver_settings hierarchical(double link_tolerance) {
   solver_settings o;
   o.method = solver_method::hierarchical;
@@ -41,13 +37,19 @@ std::string joined(const std::vector<std::string>& lines) {
   return text;
 }
 
+// The worker solving the Cornell box with the panel's hierarchical
+// settings at `link_tolerance`, once it is idle.
+std::shared_ptr<const worker_view> solved(solver_worker& worker, panel_state& panel, double link_tolerance) {
+  panel.solver = hierarchical(link_tolerance);
+  worker.load(testing::default_cornell_box(), panel.solver);
+  worker.wait_idle();
+  return worker.latest();
+}
+
 TEST(Panel, ChoosingTheOtherSolverRestartsWithIt) {
   solver_worker worker;
   panel_state panel;
-  panel.solver = hierarchical(1e-4);
-  worker.load(cornell(), panel.solver);
-  worker.wait_idle();
-  const auto first = worker.latest();
+  const auto first = solved(worker, panel, 1e-4);
   ASSERT_TRUE(first->solution);
   EXPECT_EQ(first->settings.method, solver_method::hierarchical);
   EXPECT_GT(first->solution->stats.links, 0u);
@@ -85,10 +87,7 @@ TEST(Panel, ChoosingTheOtherSolverRestartsWithIt) {
 TEST(Panel, ANewLinkToleranceRestartsOnTheSameMesh) {
   solver_worker worker;
   panel_state panel;
-  panel.solver = hierarchical(1e-3);
-  worker.load(cornell(), panel.solver);
-  worker.wait_idle();
-  const auto coarse = worker.latest();
+  const auto coarse = solved(worker, panel, 1e-3);
   ASSERT_TRUE(coarse->solution);
   panel.solver.link_tolerance = 1e-5;
   panel_actions act;
@@ -125,7 +124,7 @@ TEST(Panel, TolerancesAreShownShort) {
 
 TEST(Panel, StatisticsFollowTheSolverThatRuns) {
   solver_worker worker;
-  worker.load(cornell(), hierarchical(1e-5));
+  worker.load(testing::default_cornell_box(), hierarchical(1e-5));
   worker.pause();
   worker.step();  // the first links, at the coarsest tolerance: more to refine
   worker.wait_idle();
@@ -153,7 +152,7 @@ TEST(Panel, StatisticsFollowTheSolverThatRuns) {
 
   solver_settings progressive = hierarchical(1e-5);
   progressive.method = solver_method::progressive;
-  worker.load(cornell(), progressive);
+  worker.load(testing::default_cornell_box(), progressive);
   worker.wait_idle();
   lines = statistics_lines(*worker.latest(), 12.5);
   EXPECT_TRUE(has_line(lines, "progressive: converged")) << joined(lines);
@@ -166,7 +165,7 @@ TEST(Panel, StatisticsFollowTheSolverThatRuns) {
 // right edge (a label cut off), for either solver.
 TEST(Panel, LabelsFitThePanelForEitherSolver) {
   solver_worker worker;
-  worker.load(cornell(), hierarchical(1e-4));
+  worker.load(testing::default_cornell_box(), hierarchical(1e-4));
   worker.wait_idle();
   const auto view = worker.latest();
   ImGui::CreateContext();

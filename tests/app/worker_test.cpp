@@ -15,10 +15,6 @@
 namespace bounce {
 namespace {
 
-scene cornell() {
-  return testing::default_cornell_box();
-}
-
 // The progressive solver: one shot per step, unshot falling.
 solver_settings coarse(double until) {
   solver_settings o;
@@ -30,7 +26,7 @@ solver_settings coarse(double until) {
 
 TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
   solver_worker worker;
-  worker.load(cornell(), coarse(0.01));
+  worker.load(testing::default_cornell_box(), coarse(0.01));
   worker.wait_idle();
   auto view = worker.latest();
   ASSERT_TRUE(view->mesh);
@@ -51,7 +47,7 @@ TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
   settings.max_edge = 60;
   settings.stop.unshot_fraction = 0.01;
   ASSERT_EQ(settings.method, solver_method::hierarchical);
-  worker.load(cornell(), settings);
+  worker.load(testing::default_cornell_box(), settings);
   worker.wait_idle();
   auto view = worker.latest();
   ASSERT_TRUE(view->solution);
@@ -65,7 +61,7 @@ TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
 
 TEST(SolverWorker, PauseStepAndRestart) {
   solver_worker worker;
-  worker.load(cornell(), coarse(1e-9));
+  worker.load(testing::default_cornell_box(), coarse(1e-9));
   worker.pause();
   worker.wait_idle();
   const std::uint64_t paused_at = worker.latest()->solution->stats.shots;
@@ -100,7 +96,7 @@ TEST(SolverWorker, PauseStepAndRestart) {
 // with one history point per shot made and none for the step that found
 // nothing left.
 TEST(SolverWorker, ARunThatRunsOutRecordsOnlyTheShotsMade) {
-  scene s = cornell();
+  scene s = testing::default_cornell_box();
   for (material& m : s.materials) m.rho = rgb(0.0);
   solver_settings settings = coarse(0.0);
   solver_worker worker;
@@ -121,7 +117,7 @@ TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
   settings.max_edge = 150;
   settings.adaptive.enabled = true;
   settings.adaptive.tolerance = 0.15;
-  worker.load(cornell(), settings);
+  worker.load(testing::default_cornell_box(), settings);
   worker.wait_idle();
   const auto view = worker.latest();
   ASSERT_TRUE(view->mesh && view->solution);
@@ -134,7 +130,7 @@ TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
 // thread: the arrays once per mesh, the colours with every solution.
 TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
   solver_worker worker;
-  worker.load(cornell(), coarse(0.05));
+  worker.load(testing::default_cornell_box(), coarse(0.05));
   worker.wait_idle();
   const auto view = worker.latest();
   ASSERT_TRUE(view->mesh && view->solution && view->mesh_arrays && view->colours);
@@ -178,7 +174,7 @@ TEST(ConvergenceLog, AppendsAcrossBlocksAndSharesThem) {
 TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
   testing::scratch_dir dir;
   solver_worker worker;
-  worker.load(cornell(), coarse(0.05));
+  worker.load(testing::default_cornell_box(), coarse(0.05));
   worker.wait_idle();
   const auto before = worker.latest();
   worker.load_file(dir.write("bad.json", "{ not json"), coarse(0.05));
@@ -200,7 +196,7 @@ TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
 TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
   solver_worker worker;
   error_tracker tracker;
-  worker.load(cornell(), coarse(1e-3));
+  worker.load(testing::default_cornell_box(), coarse(1e-3));
   worker.wait_idle();
   const auto first = worker.latest();
   EXPECT_FALSE(tracker.status("s").ready);
