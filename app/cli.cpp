@@ -4,14 +4,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
+#include <tuple>
 
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
 #include "bench_command.h"
 #include "compare_command.h"
+#include "console.h"
+#include "image/picture_file.h"
 #include "info_command.h"
 #include "render_command.h"
 #include "scene/obj_io.h"
@@ -308,16 +314,29 @@ void add_camera_options(CLI::App& command, camera_options& o) {
 
 int run_cli(int argc, char** argv) {
   CLI::App app{
-      "Bounce: progressive radiosity with a live Gouraud view and two-pass ray-traced stills.\n"
-      "SCENE is a .json scene, a bare .obj, or generated:NAME for a procedural scene (generated:box-room-60,\n"
-      "generated:interior-10k to generated:interior-20m); without one, the embedded Cornell box."};
+      "Bounce: global illumination. Hierarchical radiosity with a live Gouraud view, two-pass ray-traced stills\n"
+      "and a path-traced reference.\n"
+      "SCENE is a .json scene, a bare .obj, a glTF 2.0 .gltf or .glb, or generated:NAME for a procedural scene\n"
+      "(generated:box-room-60, generated:interior-10k to generated:interior-20m); without one, the embedded\n"
+      "Cornell box."};
   app.require_subcommand(0, 1);
+  // Options of the whole command may also follow the subcommand (`bounce render --quiet`).
+  app.fallthrough();
+  app.set_version_flag("--version", std::string("bounce ") + BOUNCE_VERSION);
+  bool quiet_flag = false;
+  app.add_flag("--quiet,-q", quiet_flag, "print only warnings and errors: no progress bars, no reports");
+  int threads = 0;
+  app.add_option("--threads", threads, "worker threads (default: one per core)")->check(CLI::Range(1, 4096));
+  std::string short_scene;
+  app.add_option("SCENE", short_scene,
+                 "with no command: open this scene as `bounce view SCENE` does (headless: render it to bounce.png)");
 
   std::string scene_path;
   bool as_json = false;
   double info_max_edge = 0.0;
   CLI::App* info = app.add_subcommand("info", "load and validate a scene, print its counts");
-  info->add_option("SCENE", scene_path, "scene file (.json or .obj), or generated:NAME (e.g. generated:interior-1m)");
+  info->add_option("SCENE", scene_path,
+                   "scene file (.json, .obj, .gltf or .glb), or generated:NAME (e.g. generated:interior-1m)");
   info->add_flag("--json", as_json, "machine-readable output");
   info->add_option("--max-edge", info_max_edge, "tessellation size for curved surfaces")
       ->check(number_in(0.0, INFINITY, true));
@@ -333,25 +352,32 @@ int run_cli(int argc, char** argv) {
   };
   solving_command commands[] = {
       {"view", "open the interactive window", true, nullptr, {}, {}, {}},
-      {"render", "solve and render the Gouraud view headlessly to PNG/PFM", true, nullptr, {}, {}, {}},
+      {"render", "solve and render the Gouraud view headlessly to a picture file", true, nullptr, {}, {}, {}},
       {"trace", "solve, then ray trace a still (two-pass), or path trace a reference", true, nullptr, {}, {}, {}},
       {"solve", "run the radiosity solver and report statistics", false, nullptr, {}, {}, {}},
   };
   for (solving_command& c : commands) {
     c.app = app.add_subcommand(c.name, c.help);
-    c.app->add_option("SCENE", c.scene, "scene file (.json or .obj), or generated:NAME (e.g. generated:interior-1m)");
+    c.app->add_option("SCENE", c.scene,
+                      "scene file (.json, .obj, .gltf or .glb), or generated:NAME (e.g. generated:interior-1m)");
     add_solver_options(*c.app, c.solver);
     if (c.has_camera) add_camera_options(*c.app, c.camera);
   }
   render_options render_extra;
   CLI::App* render = commands[1].app;
-  render->add_option("--out", render_extra.png_path, "PNG of the Gouraud view (tone-mapped)")->capture_default_str();
-  render->add_option("--pfm", render_extra.pfm_path, "PFM of the same view in linear radiance, unscaled");
-  CLI::Option* render_frames =
-      render->add_option("--frames", render_extra.frames_dir, "also write one PNG per --frame-every shots into DIR");
-  render->add_option("--frame-every", render_extra.frame_every, "with --frames: shots between frames")
+  render
+      ->add_option("--out", render_extra.out_path,
+                   "picture of the Gouraud view; the extension picks the format: .png (tone-mapped), or .pfm, .exr, "
+                   ".hdr (linear radiance, unscaled)")
+      ->capture_default_str();
+  render->add_option("--pfm", render_extra.pfm_path, "also write the view in linear radiance to this PFM");
+  CLI::Option* render_frames = render->add_option(
+      "--frames", render_extra.frames_dir,
+      "also write PNG frames of the convergence into DIR: after 1, 2, 4, 8, ... shots and at the end");
+  render
+      ->add_option("--frame-every", render_extra.frame_every,
+                   "with --frames: a frame every N shots instead of at doubling counts")
       ->check(CLI::Range(1L, 1L << 40))
-      ->capture_default_str()
       ->needs(render_frames);
   render->add_option("--exposure", render_extra.exposure, "displayed value = radiance x exposure")
       ->check(number_in(min_exposure, max_exposure))
@@ -445,6 +471,56 @@ int run_cli(int argc, char** argv) {
       commands[3].solver.form_factors.method != form_factor_method::raycast)
     return usage_error("--ray-baseline applies to --method raycast only (the hemicube casts no shadow rays)");
 
+  set_quiet(quiet_flag);
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+
+  // Output files are checked before any long work starts.
+  std::vector<std::tuple<const char*, std::string, bool>> outputs;  // option, path, must be a picture
+  if (render->parsed()) {
+    outputs = {{"--out", render_extra.out_path, true},
+               {"--pfm", render_extra.pfm_path, false},
+               {"--stats", render_extra.stats_path, false}};
+    const bool linear = is_linear(picture_format_of(render_extra.out_path).value_or(picture_format::png));
+    if (linear)
+      for (const char* png_only : {"--panel", "--tone", "--exposure"})
+        if (render->count(png_only))
+          return usage_error(std::string(png_only) + " applies to PNG output only (--out " + render_extra.out_path +
+                             " is linear radiance)");
+    if (!render_extra.frames_dir.empty()) {
+      namespace fs = std::filesystem;
+      const fs::path parent = fs::absolute(render_extra.frames_dir).parent_path();
+      std::error_code ec;
+      if (!fs::is_directory(render_extra.frames_dir, ec) && !fs::is_directory(parent, ec))
+        return usage_error("--frames " + render_extra.frames_dir + ": the folder " + parent.string() +
+                           " does not exist");
+    }
+  }
+  if (trace->parsed()) {
+    outputs = {{"--out", trace_extra.out_path, true},
+               {"--pfm", trace_extra.pfm_path, false},
+               {"--stats", trace_extra.stats_path, false}};
+    if (is_linear(picture_format_of(trace_extra.out_path).value_or(picture_format::png)) && trace->count("--exposure"))
+      return usage_error("--exposure applies to PNG output only (--out " + trace_extra.out_path +
+                         " is linear radiance)");
+  }
+  if (solve->parsed()) outputs = {{"--ply", solve_extra.ply_path, false}, {"--stats", solve_extra.stats_path, false}};
+  if (view->parsed())
+    outputs = {{"--screenshot", view_extra.screenshot_path, false}, {"--still", view_extra.still_path, false}};
+  for (const auto& [option, path, picture] : outputs)
+    if (!path.empty())
+      if (std::string e = check_output_path(option, path, picture); !e.empty()) return usage_error(e);
+
+  const bool any_command =
+      std::any_of(std::begin(commands), std::end(commands), [](const solving_command& c) { return c.app->parsed(); }) ||
+      info->parsed() || compare->parsed() || bench->parsed();
+  if (any_command && !short_scene.empty()) return usage_error("unexpected argument '" + short_scene + "'");
+  if (!short_scene.empty() && !short_scene.starts_with("generated:") &&
+      !std::filesystem::path(short_scene).has_extension() && !std::filesystem::exists(short_scene))
+    return usage_error("'" + short_scene +
+                       "' is neither a command nor a scene file (commands: info, view, render, "
+                       "trace, solve, bench, compare)");
+
   if (info->parsed()) return run_info(scene_path, as_json, info_max_edge);
   if (compare->parsed()) return run_compare(compare_test, compare_reference, compare_downsample, compare_bright);
   for (solving_command& c : commands) {
@@ -458,14 +534,14 @@ int run_cli(int argc, char** argv) {
   }
   if (bench->parsed()) return run_bench_command(bench_extra);
 
-  // No subcommand: the main job on the embedded Cornell box: the window
-  // when there is a display, otherwise a headless render to bounce.png in
-  // the current folder.
+  // No subcommand: the main job, on the scene named or the embedded
+  // Cornell box: the window when there is a display, otherwise a headless
+  // render to bounce.png in the current folder.
   scene s;
-  if (int code = load_for_command("", nullptr, s); code != exit_ok) return code;
+  if (int code = load_for_command(short_scene, nullptr, s); code != exit_ok) return code;
   const char* display = std::getenv("DISPLAY");
   if (display && *display) return run_viewer(s, solver_settings{}, viewer_options{});
-  std::cout << "bounce: no display; rendering headless\n";
+  say("bounce: no display; rendering headless\n");
   return run_render(s, solver_settings{}, render_options{});
 }
 

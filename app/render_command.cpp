@@ -8,6 +8,8 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include "console.h"
+#include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
 #include "offscreen_view.h"
 #include "panel.h"
@@ -131,40 +133,63 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
   };
   bool frames_ok = true;
   std::size_t frames = 0;
-  run_radiosity(*state, solver.stop, [&](const radiosity_state& st) {
-    if (options.panel) history.push_back({st.stats.seconds, st.stats.unshot_fraction});
-    if (options.frames_dir.empty() || !frames_ok || st.stats.shots % std::uint64_t(options.frame_every) != 0) return;
+  std::uint64_t next_frame = 1, last_frame_step = ~std::uint64_t(0);
+  auto write_numbered_frame = [&](const radiosity_state& st) {
     show(st);
     char name[64];
     // Named by step (shots and refinement passes), so that no frame overwrites another.
-    std::snprintf(name, sizeof name, "frame_%06llu.png",
-                  static_cast<unsigned long long>(st.stats.shots + st.stats.refinements));
+    last_frame_step = st.stats.shots + st.stats.refinements;
+    std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(last_frame_step));
     frames_ok = write_frame((std::filesystem::path(options.frames_dir) / name).string());
     ++frames;
+  };
+  progress_line progress("solving");
+  run_radiosity(*state, solver.stop, [&](const radiosity_state& st) {
+    progress.update(
+        solve_progress(st.stats.unshot_fraction, solver.stop.unshot_fraction, st.stats.seconds, solver.stop.seconds),
+        unshot_text(st.stats.unshot_fraction));
+    if (options.panel) history.push_back({st.stats.seconds, st.stats.unshot_fraction});
+    if (options.frames_dir.empty() || !frames_ok || st.stats.shots == 0) return;
+    // A fixed spacing, or doubling counts: the early shots change the picture most.
+    const bool due = options.frame_every > 0 ? st.stats.shots % std::uint64_t(options.frame_every) == 0
+                                             : st.stats.shots >= next_frame;
+    if (!due) return;
+    while (next_frame <= st.stats.shots) next_frame *= 2;
+    write_numbered_frame(st);
   });
+  progress.done();
+  if (frames_ok && !options.frames_dir.empty() && last_frame_step != state->stats.shots + state->stats.refinements)
+    write_numbered_frame(*state);  // and the converged picture
   if (!frames_ok) return exit_input_error;
 
   show(*state);
-  if (!write_frame(options.png_path)) return exit_input_error;
-  std::printf("solved: %llu shots, unshot %.4f%%, %zu elements, %.3f s\n",
-              static_cast<unsigned long long>(state->stats.shots), 100.0 * state->stats.unshot_fraction,
-              state->mesh->element_count(), state->stats.seconds);
-  std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(options.png_path).string().c_str(), s.view.width,
-              s.view.height);
+  const std::optional<picture_format> format = picture_format_of(options.out_path);
+  if (format && is_linear(*format)) {
+    if (!write_picture(options.out_path, view.render_linear(view_projection, eye, settings), 1.0, error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return exit_input_error;
+    }
+  } else if (!write_frame(options.out_path)) {
+    return exit_input_error;
+  }
+  say("solved: %llu shots, unshot %.4f%%, %zu elements, %.3f s\n", static_cast<unsigned long long>(state->stats.shots),
+      100.0 * state->stats.unshot_fraction, state->mesh->element_count(), state->stats.seconds);
+  say("wrote %s (%dx%d%s)\n", std::filesystem::absolute(options.out_path).string().c_str(), s.view.width, s.view.height,
+      format && is_linear(*format) ? ", linear radiance" : "");
   if (!options.pfm_path.empty()) {
     if (!write_pfm(options.pfm_path, view.render_linear(view_projection, eye, settings), error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }
-    std::printf("wrote %s (linear radiance)\n", options.pfm_path.c_str());
+    say("wrote %s (linear radiance)\n", options.pfm_path.c_str());
   }
-  if (frames) std::printf("wrote %zu frames to %s\n", frames, options.frames_dir.c_str());
+  if (frames) say("wrote %zu frames to %s\n", frames, options.frames_dir.c_str());
   if (!options.stats_path.empty()) {
     if (!write_stats(options.stats_path, solver_stats_json(s, solver, mesh, *state, mesh_seconds), error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }
-    std::printf("wrote %s (statistics)\n", options.stats_path.c_str());
+    say("wrote %s (statistics)\n", options.stats_path.c_str());
   }
   return exit_ok;
 }

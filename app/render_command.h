@@ -9,10 +9,10 @@
 namespace bounce {
 
 struct render_options {
-  std::string png_path = "bounce.png";  // --out
-  std::string pfm_path;                 // --pfm: linear radiance
-  std::string frames_dir;               // --frames: one PNG per `frame_every` shots
-  long frame_every = 1;
+  std::string out_path = "bounce.png";  // --out: the extension picks the format
+  std::string pfm_path;                 // --pfm: also linear radiance
+  std::string frames_dir;               // --frames: PNGs of the convergence
+  long frame_every = 0;                 // shots between frames; 0: after 1, 2, 4, 8, ... shots
   double exposure = 1.0;
   std::string curve = "srgb";  // srgb | filmic
   bool wireframe = false;

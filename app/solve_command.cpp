@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "console.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/occlusion.h"
@@ -35,11 +36,11 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     return exit_input_error;
   }
   const double mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
-  std::printf("mesh: %zu elements, %zu vertices, %zu shooting patches (max edge %g) in %.3f s\n", mesh.element_count(),
-              mesh.vertex_count(), mesh.patch_count(), mesh.max_edge, mesh_seconds);
+  say("mesh: %zu elements, %zu vertices, %zu shooting patches (max edge %g) in %.3f s\n", mesh.element_count(),
+      mesh.vertex_count(), mesh.patch_count(), mesh.max_edge, mesh_seconds);
   if (solver.adaptive.enabled)
-    std::printf("a priori refinement: %zu marks at contacts, %zu near emitters; %zu -> %zu elements\n",
-                a_priori.contact, a_priori.emitter, a_priori.elements_before, a_priori.elements_after);
+    say("a priori refinement: %zu marks at contacts, %zu near emitters; %zu -> %zu elements\n", a_priori.contact,
+        a_priori.emitter, a_priori.elements_before, a_priori.elements_after);
   warn_about_mesh(s, mesh);
 
   auto state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
@@ -53,14 +54,14 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     const double dt = std::chrono::duration<double>(now - last_print).count();
     if (dt < 1.0) return;
     if (st.hierarchy)
-      std::printf("steps %6llu  residual %9.5f%%  links %10llu  tolerance %.1e%s\n",
-                  static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
-                  static_cast<unsigned long long>(st.stats.links), st.stats.link_tolerance,
-                  st.stats.links_final ? "" : " (refining)");
+      say("steps %6llu  residual %9.5f%%  links %10llu  tolerance %.1e%s\n",
+          static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
+          static_cast<unsigned long long>(st.stats.links), st.stats.link_tolerance,
+          st.stats.links_final ? "" : " (refining)");
     else
-      std::printf("shots %8llu  unshot %9.5f%%  %8.0f shots/s  %7.2f Mrays/s\n",
-                  static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
-                  double(st.stats.shots - shots_then) / dt, double(st.stats.rays - rays_then) / dt * 1e-6);
+      say("shots %8llu  unshot %9.5f%%  %8.0f shots/s  %7.2f Mrays/s\n",
+          static_cast<unsigned long long>(st.stats.shots), 100.0 * st.stats.unshot_fraction,
+          double(st.stats.shots - shots_then) / dt, double(st.stats.rays - rays_then) / dt * 1e-6);
     std::fflush(stdout);
     last_print = now;
     shots_then = st.stats.shots;
@@ -70,20 +71,18 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
   const power_balance& pb = state->balance;
   const patch_mesh& solved = *state->mesh;  // refined, with --adaptive
   for (const refinement_pass& pass : state->adaptive.history)
-    std::printf(
-        "refinement at unshot %.3f%%: %zu marked by radiosity difference, %zu on shadow edges; %zu -> %zu elements "
+    say("refinement at unshot %.3f%%: %zu marked by radiosity difference, %zu on shadow edges; %zu -> %zu elements "
         "(+%zu vertices) in %.3f s\n",
         100.0 * pass.unshot_fraction, pass.gradient, pass.shadow, pass.elements_before, pass.elements_after,
         pass.new_vertices, pass.seconds);
   if (!state->adaptive.error.empty())
     std::fprintf(stderr, "warning: refinement stopped: %s\n", state->adaptive.error.c_str());
   if (solver.adaptive.enabled)
-    std::printf("adaptive mesh: %zu elements, %zu vertices (%zu elements before refinement while solving)\n",
-                solved.element_count(), solved.vertex_count(), mesh.element_count());
+    say("adaptive mesh: %zu elements, %zu vertices (%zu elements before refinement while solving)\n",
+        solved.element_count(), solved.vertex_count(), mesh.element_count());
   if (state->hierarchy) {
     const hierarchical_solver& h = *state->hierarchy;
-    std::printf(
-        "done: hierarchical, %llu steps, residual %.6f%%, %.3f s, %zu links (%.1f MiB) at tolerance %.1e, "
+    say("done: hierarchical, %llu steps, residual %.6f%%, %.3f s, %zu links (%.1f MiB) at tolerance %.1e, "
         "%llu rays, %zu tree nodes%s\n",
         static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds, h.links.size(),
         double(h.links.size() * sizeof(hierarchy_link)) / (1 << 20), h.progress.tolerance,
@@ -91,10 +90,10 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
         h.progress.closed ? ", closed scene: form factors normalised" : "");
     if (!h.progress.warning.empty()) std::fprintf(stderr, "warning: %s\n", h.progress.warning.c_str());
   } else {
-    std::printf("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
-                static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
-                static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
-                balance_error(pb));
+    say("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",
+        static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds,
+        static_cast<unsigned long long>(st.rays), st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0,
+        balance_error(pb));
   }
 
   nlohmann::json stats = solver_stats_json(s, solver, mesh, *state, mesh_seconds);
@@ -109,12 +108,11 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     }
     const double difference = vertex_relative_error(state->radiosity, ref.radiosity).max;
     const double gs_difference = vertex_relative_error(ref.radiosity_gauss_seidel, ref.radiosity).max;
-    std::printf(
-        "reference: matrix %.3f s, LU %.3f s (residual %.2e), Gauss-Seidel %.3f s, %d iterations (residual "
+    say("reference: matrix %.3f s, LU %.3f s (residual %.2e), Gauss-Seidel %.3f s, %d iterations (residual "
         "%.2e, differs from LU by %.2e)\n",
         ref.seconds_matrix, ref.seconds_lu, ref.residual, ref.seconds_gauss_seidel, ref.gauss_seidel_iterations,
         ref.residual_gauss_seidel, gs_difference);
-    std::printf("progressive vs reference: max relative difference %.3e\n", difference);
+    say("progressive vs reference: max relative difference %.3e\n", difference);
     stats["reference"] = {{"residual_lu", ref.residual},
                           {"residual_gauss_seidel", ref.residual_gauss_seidel},
                           {"gauss_seidel_iterations", ref.gauss_seidel_iterations},
@@ -124,7 +122,7 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
                           {"max_relative_difference", difference}};
   }
   if (extra.ray_baseline && solver.form_factors.method != form_factor_method::raycast) {
-    std::printf("ray baseline: the hemicube casts no shadow rays\n");
+    say("ray baseline: the hemicube casts no shadow rays\n");
   } else if (extra.ray_baseline) {
     // The same segments, one rtcOccluded1 call each, on all cores: Embree's
     // own rate on exactly the solver's rays, with no form-factor work.
@@ -141,8 +139,7 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     const double seconds = std::chrono::duration<double>(clock_type::now() - start).count();
     const double raw = double(segments.size()) / seconds * 1e-6;
     const double solver_rate = st.seconds > 0 ? double(st.rays) / st.seconds * 1e-6 : 0.0;
-    std::printf(
-        "ray baseline: rtcOccluded1 on %zu recorded solver rays: %.2f Mrays/s (%zu blocked); the solver's "
+    say("ray baseline: rtcOccluded1 on %zu recorded solver rays: %.2f Mrays/s (%zu blocked); the solver's "
         "%.2f Mrays/s, form factors included, is %.0f%% of it\n",
         segments.size(), raw, blocked.load(), solver_rate, raw > 0 ? 100.0 * solver_rate / raw : 0.0);
     stats["ray_baseline"] = {
@@ -157,7 +154,7 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }
-    std::printf("wrote %s\n", extra.ply_path.c_str());
+    say("wrote %s\n", extra.ply_path.c_str());
   }
   return exit_ok;
 }

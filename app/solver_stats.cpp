@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include <tbb/global_control.h>
+
 namespace bounce {
 namespace {
 
@@ -42,6 +44,8 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
       {"unshot_fraction", st.unshot_fraction},
       {"seconds", st.seconds},
       {"rays", st.rays},
+      // What the run could use: one per core, or --threads.
+      {"threads", tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)},
   };
   if (state.hierarchy) {
     // The residual stands for the unshot power: what one more iteration would still move.

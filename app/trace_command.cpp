@@ -10,6 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
+#include "console.h"
+#include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/radiosity_field.h"
@@ -43,21 +45,32 @@ bool solve(const scene& s, const solver_settings& solver, solved& out) {
   out.mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
   warn_about_mesh(s, out.mesh);
   out.state = make_radiosity_state(s, out.mesh, radiosity_params_for(solver));
-  run_radiosity(*out.state, solver.stop, [](const radiosity_state&) {});
+  progress_line progress("solving");
+  run_radiosity(*out.state, solver.stop, [&](const radiosity_state& st) {
+    progress.update(
+        solve_progress(st.stats.unshot_fraction, solver.stop.unshot_fraction, st.stats.seconds, solver.stop.seconds),
+        unshot_text(st.stats.unshot_fraction));
+  });
   return true;
 }
 
 }  // namespace
 
 void add_trace_options(CLI::App& command, trace_options& options) {
-  command.add_option("--out", options.png_path, "PNG of the still (radiance x exposure, sRGB)")->capture_default_str();
-  command.add_option("--pfm", options.pfm_path, "PFM of the still in linear radiance, unscaled");
+  command
+      .add_option("--out", options.out_path,
+                  "the still; the extension picks the format: .png (radiance x exposure, sRGB), or .pfm, .exr, .hdr "
+                  "(linear radiance, unscaled)")
+      ->capture_default_str();
+  command.add_option("--pfm", options.pfm_path, "also write the still in linear radiance to this PFM");
   command.add_option("--integrator", options.integrator, "whitted (two-pass with radiosity) or path (reference)")
       ->check(CLI::IsMember({"whitted", "path"}))
       ->capture_default_str();
-  command.add_option("--spp", options.spp, "samples per pixel (1 = pixel centre; more are stratified)")
-      ->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
+  command
+      .add_option("--spp", options.spp,
+                  "samples per pixel, stratified (1 = pixel centre). Default: whitted 16, which smooths edges and the "
+                  "soft shadows of area lights; path 256, which leaves about 8% noise per pixel in the Cornell box")
+      ->check(CLI::Range(1, 1 << 20));
   command
       .add_option("--adaptive-spp", options.adaptive_spp,
                   "trace pixels that differ from a neighbour again with this many samples, more than --spp (0: off)")
@@ -112,16 +125,17 @@ std::string check_trace_options(const CLI::App& command, const trace_options& op
   if (options.no_radiosity && options.ambient)
     if (std::string solver = given_options(command, solver_option_names()); !solver.empty())
       return solver + ": with --no-radiosity and --ambient there is no radiosity pass";
-  if (options.adaptive_spp > 0 && options.adaptive_spp <= options.spp)
+  const int spp = options.spp > 0 ? options.spp : default_spp(options.integrator);
+  if (options.adaptive_spp > 0 && options.adaptive_spp <= spp)
     return "--adaptive-spp " + std::to_string(options.adaptive_spp) + " must be more than --spp " +
-           std::to_string(options.spp) + " (0: off)";
+           std::to_string(spp) + (options.spp > 0 ? "" : " (the default)") + " (0: off)";
   return {};
 }
 
 int run_trace(const scene& s, const solver_settings& solver, const trace_options& options) {
   trace_params params;
   params.method = options.integrator == "path" ? integrator::path : integrator::whitted;
-  params.spp = options.spp;
+  params.spp = options.spp > 0 ? options.spp : default_spp(options.integrator);
   params.adaptive_spp = options.adaptive_spp;
   if (options.depth > 0) (params.method == integrator::path ? params.max_path : params.max_depth) = options.depth;
   params.light_samples = options.light_samples;
@@ -135,9 +149,9 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
   std::unique_ptr<radiosity_field> field;
   if (params.method == integrator::whitted && !options.no_radiosity) {
     if (!solve(s, solver, pass)) return exit_input_error;
-    std::printf("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.state->mesh->element_count(),
-                static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
-                pass.state->stats.seconds);
+    say("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.state->mesh->element_count(),
+        static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
+        pass.state->stats.seconds);
     field = std::make_unique<radiosity_field>(*pass.state->mesh, pass.state->radiosity, pass.state->direct);
   } else if (params.method == integrator::whitted) {
     params.diffuse = diffuse_source::ambient;
@@ -149,8 +163,8 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
       if (!solve(s, coarse, pass)) return exit_input_error;
       params.ambient_irradiance = mean_indirect_irradiance(*pass.state);
     }
-    std::printf("one pass: ambient irradiance %.4g %.4g %.4g\n", params.ambient_irradiance.r,
-                params.ambient_irradiance.g, params.ambient_irradiance.b);
+    say("one pass: ambient irradiance %.4g %.4g %.4g\n", params.ambient_irradiance.r, params.ambient_irradiance.g,
+        params.ambient_irradiance.b);
   }
 
   const auto build_start = clock_type::now();
@@ -161,18 +175,19 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
   trace_stats stats;
   auto job = std::async(std::launch::async,
                         [&] { return trace_image(s, s.view, rays, field.get(), params, &progress, &stats); });
-  while (job.wait_for(std::chrono::seconds(1)) != std::future_status::ready) {
-    const long total = progress.pixels_total;
-    std::printf("tracing %5.1f%%\n", total > 0 ? 100.0 * double(progress.pixels_done) / double(total) : 0.0);
-    std::fflush(stdout);
+  {
+    progress_line line("tracing");
+    while (job.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
+      const long total = progress.pixels_total;
+      line.update(total > 0 ? double(progress.pixels_done) / double(total) : 0.0, std::to_string(params.spp) + " spp");
+    }
   }
   const image img = job.get();
 
   const double rays_total = double(stats.primary_rays + stats.shadow_rays + stats.secondary_rays);
-  std::printf(
-      "traced %dx%d (%s, %d spp%s) in %.3f s (scene build %.3f s): %llu primary, %llu shadow, %llu secondary rays, "
+  say("traced %dx%d (%s, %d spp%s) in %.3f s (scene build %.3f s): %llu primary, %llu shadow, %llu secondary rays, "
       "%.2f Mrays/s\n",
-      img.width, img.height, options.integrator.c_str(), options.spp,
+      img.width, img.height, options.integrator.c_str(), params.spp,
       options.adaptive_spp ? (", " + std::to_string(stats.refined_pixels) + " pixels refined").c_str() : "",
       stats.seconds, build_seconds, static_cast<unsigned long long>(stats.primary_rays),
       static_cast<unsigned long long>(stats.shadow_rays), static_cast<unsigned long long>(stats.secondary_rays),
@@ -194,8 +209,7 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
     const double seconds = std::chrono::duration<double>(clock_type::now() - start).count();
     const double raw = double(w) * h * passes / seconds * 1e-6;
     const double traced = stats.seconds > 0 ? rays_total / stats.seconds * 1e-6 : 0.0;
-    std::printf(
-        "ray baseline: closest hits alone %.2f Mrays/s (%zu hits); the tracer's %.2f Mrays/s, shading included, "
+    say("ray baseline: closest hits alone %.2f Mrays/s (%zu hits); the tracer's %.2f Mrays/s, shading included, "
         "is %.0f%% of it\n",
         raw, hits.load(), traced, raw > 0 ? 100.0 * traced / raw : 0.0);
   }
@@ -206,7 +220,7 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
                            {{"integrator", options.integrator},
                             {"width", img.width},
                             {"height", img.height},
-                            {"spp", options.spp},
+                            {"spp", params.spp},
                             {"primary_rays", stats.primary_rays},
                             {"shadow_rays", stats.shadow_rays},
                             {"secondary_rays", stats.secondary_rays},
@@ -221,19 +235,19 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
       return exit_input_error;
     }
   }
-  const std::vector<unsigned char> rows = to_srgb_rows(img, options.exposure);
-  if (!write_png(options.png_path, img.width, img.height, 3, rows.data(), error)) {
+  if (!write_picture(options.out_path, img, options.exposure, error)) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return exit_input_error;
   }
-  std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(options.png_path).string().c_str(), img.width,
-              img.height);
+  const std::optional<picture_format> format = picture_format_of(options.out_path);
+  say("wrote %s (%dx%d%s)\n", std::filesystem::absolute(options.out_path).string().c_str(), img.width, img.height,
+      format && is_linear(*format) ? ", linear radiance" : "");
   if (!options.pfm_path.empty()) {
     if (!write_pfm(options.pfm_path, img, error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }
-    std::printf("wrote %s (linear radiance)\n", options.pfm_path.c_str());
+    say("wrote %s (linear radiance)\n", options.pfm_path.c_str());
   }
   return exit_ok;
 }

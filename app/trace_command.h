@@ -11,10 +11,10 @@
 namespace bounce {
 
 struct trace_options {
-  std::string png_path = "bounce-trace.png";  // --out
+  std::string out_path = "bounce-trace.png";  // --out
   std::string pfm_path;                       // --pfm: linear radiance
   std::string integrator = "whitted";         // whitted | path
-  int spp = 1;
+  int spp = 0;                                // 0: default_spp(integrator)
   int adaptive_spp = 0;
   int depth = 0;  // 0: the integrator's default
   int light_samples = 16;
@@ -28,6 +28,12 @@ struct trace_options {
 };
 
 void add_trace_options(CLI::App& command, trace_options& options);
+
+// Samples per pixel when --spp is not given: enough for a clean picture of
+// the Cornell box (see --help).
+inline int default_spp(const std::string& integrator) {
+  return integrator == "path" ? 256 : 16;
+}
 
 // Options the chosen integrator and passes would ignore (e.g. --ambient
 // without --no-radiosity, solver options with the path tracer); an error

@@ -2,6 +2,7 @@
 // file; the rest of Bounce sees the flat patch_mesh.
 #include <OpenMesh/Core/IO/MeshIO.hh>  // must precede the kernel (OpenMesh's rule)
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
 
 #include <cmath>
 #include <cstdio>
@@ -256,8 +257,13 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   const coplanar_cut_stats cuts = cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
   working_mesh w;
   std::size_t nonmanifold = 0;
+  // OpenMesh prints "complex edge" for every face it refuses; add_surface
+  // counts them and keeps them, and the caller warns once with the count.
+  ::omerr().disable();
   for (std::size_t i = 0; i < s.surfaces.size(); ++i)
     add_surface(w, tessellated[i], static_cast<int>(i), flat[i], cos_crease, nonmanifold);
+  ::omerr().flush();  // while disabled: drops what was buffered
+  ::omerr().enable();
   tessellated.clear();
   // Two levels of bisection: to the patch size, where each face becomes a
   // patch, then to the element size; split_copy hands the patch index down.

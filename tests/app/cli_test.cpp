@@ -187,7 +187,10 @@ TEST(Cli, WarningsGoToStandardError) {
 }
 
 TEST(Cli, UsageErrorsExitTwo) {
-  EXPECT_EQ(run("frobnicate").code, 2);
+  // Neither a command nor a file: a typo, not a missing scene.
+  run_result r = run("frobnicate");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("'frobnicate' is neither a command nor a scene file"), std::string::npos) << r.err;
   EXPECT_EQ(run("info --max-edge -1").code, 2);
   EXPECT_EQ(run("solve --method magic").code, 2);
   EXPECT_EQ(run("solve --until 2").code, 2);
@@ -501,9 +504,10 @@ TEST(Cli, TraceRejectsBadOptionsAndFiles) {
   run_result r = run("trace " + dir.path("missing.json"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+  // A usage error, found before the solve (Cli.OutputPathsAreCheckedBeforeAnyWork).
   r = run("trace --size 8x8 --max-edge 200 --until 0.5 --out " + dir.path("no/such/folder/a.png"));
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("a.png"), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("a.png: the folder"), std::string::npos) << r.err;
 }
 
 TEST(Cli, CompareReportsErrorsBetweenPictures) {
@@ -600,6 +604,175 @@ TEST(Cli, SolveRefusesAbsurdMeshes) {
   run_result r = run("solve --max-edge 0.001");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("use a larger --max-edge"), std::string::npos) << r.err;
+}
+
+// --- Conventions of pbrt, Mitsuba and Blender's command lines ---------------
+
+std::string head(const std::string& path, std::size_t n) {
+  return slurp(path).substr(0, n);
+}
+
+TEST(Cli, VersionNamesTheProgram) {
+  run_result r = run("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.rfind("bounce ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find_first_of("0123456789"), std::string::npos) << r.out;
+}
+
+TEST(Cli, QuietLeavesOnlyWarningsAndErrors) {
+  scratch_dir dir;
+  const std::string fast = " --size 16x16 --max-edge 150 --until 0.05";
+  // Before or after the command's name, as pbrt and Blender accept.
+  for (const std::string& line :
+       {"--quiet render" + fast + " --out " + dir.path("a.png"), "render -q" + fast + " --out " + dir.path("b.png"),
+        "trace --quiet --spp 1" + fast + " --out " + dir.path("c.png"),
+        std::string("solve --quiet --max-edge 150 --until 0.05")}) {
+    run_result r = run(line);
+    EXPECT_EQ(r.code, 0) << line << ": " << r.err;
+    EXPECT_EQ(r.out, "") << line;
+    EXPECT_EQ(r.err, "") << line;
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir.path("a.png")));
+  EXPECT_TRUE(std::filesystem::exists(dir.path("c.png")));
+  // Errors still speak.
+  run_result r = run("render --quiet --out " + dir.path("a.jpg"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown picture format"), std::string::npos) << r.err;
+}
+
+// Progress bars redraw one line on a terminal and stay out of pipes and logs.
+TEST(Cli, ProgressBarsOnATerminalOnly) {
+  scratch_dir dir;
+  const std::string args = "trace --size 96x96 --max-edge 100 --until 0.01 --spp 4 --out " + dir.path("a.png");
+  run_result piped = run(args);
+  ASSERT_EQ(piped.code, 0) << piped.err;
+  EXPECT_EQ(piped.err.find('\r'), std::string::npos) << piped.err;
+  EXPECT_EQ(piped.err.find("solving ["), std::string::npos) << piped.err;
+  // script(1) gives the command a pseudo-terminal; both streams land in its output.
+  const std::string log = dir.path("tty.log");
+  const std::string command = "script -qec '" + std::string(BOUNCE_EXE) + " " + args + "' " + log + " >/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string seen = slurp(log);
+  EXPECT_NE(seen.find("\rsolving ["), std::string::npos) << seen;
+  // The bar is erased before the report, which starts on a clean line.
+  EXPECT_NE(seen.find("\r\x1b[Kradiosity: "), std::string::npos) << seen;
+  const std::string quiet = "script -qec '" + std::string(BOUNCE_EXE) + " --quiet " + args + "' " + log + " >/dev/null";
+  ASSERT_EQ(std::system(quiet.c_str()), 0);
+  EXPECT_EQ(slurp(log).find("solving ["), std::string::npos) << slurp(log);
+}
+
+TEST(Cli, ThreadsLimitsTheWorkers) {
+  scratch_dir dir;
+  const std::string stats = dir.path("s.json");
+  ASSERT_EQ(run("solve --max-edge 150 --until 0.05 --threads 1 --stats " + stats).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["threads"], 1);
+  ASSERT_EQ(run("--threads 2 solve --max-edge 150 --until 0.05 --stats " + stats).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["threads"], 2);
+  ASSERT_EQ(run("solve --max-edge 150 --until 0.05 --stats " + stats).code, 0);
+  EXPECT_GE(nlohmann::json::parse(slurp(stats))["threads"].get<int>(), 1);
+  for (const char* bad : {"--threads 0 solve", "--threads x solve", "solve --threads -2"})
+    EXPECT_EQ(run(bad).code, 2) << bad;
+}
+
+// `bounce SCENE` is `bounce view SCENE`: the window, or headless without a display.
+TEST(Cli, ASceneAloneOpensIt) {
+  scratch_dir dir;
+  run_result r = run_env("cd " + dir.root.string() + " && env -u DISPLAY",
+                         source_path("assets/cornell_box/cornell_box.json") + " --quiet");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("bounce.png")));
+  r = run_env("env -u DISPLAY", dir.path("missing.json"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+  r = run("render " + source_path("assets/cornell_box/cornell_box.json") + " extra.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unexpected argument 'extra.json'"), std::string::npos) << r.err;
+}
+
+// --out's extension picks the format; the linear formats hold the same
+// radiance as --pfm.
+TEST(Cli, OutputFormatFollowsTheExtension) {
+  scratch_dir dir;
+  const std::string fast = " --size 24x16 --max-edge 150 --until 0.05 --quiet";
+  for (const char* command : {"render", "trace --spp 1"}) {
+    const std::string c = command;
+    ASSERT_EQ(run(c + fast + " --out " + dir.path("a.png")).code, 0) << c;
+    EXPECT_EQ(head(dir.path("a.png"), 4), "\x89PNG") << c;
+    ASSERT_EQ(run(c + fast + " --out " + dir.path("a.exr") + " --pfm " + dir.path("ref.pfm")).code, 0) << c;
+    EXPECT_EQ(head(dir.path("a.exr"), 4), std::string("\x76\x2f\x31\x01", 4)) << c;
+    ASSERT_EQ(run(c + fast + " --out " + dir.path("A.HDR")).code, 0) << c;
+    EXPECT_EQ(head(dir.path("A.HDR"), 10), "#?RADIANCE") << c;
+    ASSERT_EQ(run(c + fast + " --out " + dir.path("a.pfm")).code, 0) << c;
+    EXPECT_EQ(slurp(dir.path("a.pfm")), slurp(dir.path("ref.pfm"))) << c << ": --out x.pfm is the --pfm picture";
+    run_result r = run(c + fast + " --out " + dir.path("a.jpg"));
+    EXPECT_EQ(r.code, 2) << c;
+    EXPECT_NE(r.err.find("unknown picture format '.jpg' (use .png, .pfm, .exr or .hdr)"), std::string::npos) << r.err;
+  }
+  // Display transforms do not apply to radiance files.
+  for (const char* png_only : {"render --panel", "render --tone filmic", "render --exposure 2", "trace --exposure 2"}) {
+    run_result r = run(std::string(png_only) + " --out " + dir.path("x.exr"));
+    EXPECT_EQ(r.code, 2) << png_only;
+    EXPECT_NE(r.err.find("applies to PNG output only"), std::string::npos) << r.err;
+  }
+}
+
+// A bad output path is reported before the scene is even loaded: nothing
+// else gets written.
+TEST(Cli, OutputPathsAreCheckedBeforeAnyWork) {
+  scratch_dir dir;
+  const std::string stats = dir.path("stats.json");
+  const std::string missing = dir.path("no/such/folder/");
+  const std::pair<std::string, std::string> cases[] = {
+      {"render --stats " + stats + " --out " + missing + "a.png", "does not exist"},
+      {"render --stats " + stats + " --pfm " + missing + "a.pfm", "does not exist"},
+      {"render --stats " + missing + "s.json --out " + dir.path("a.png"), "does not exist"},
+      {"render --stats " + stats + " --frames " + missing + "frames", "does not exist"},
+      {"trace --stats " + stats + " --out " + dir.root.string(), "is a folder"},
+      {"trace --stats " + stats + " --out " + dir.path("a.tiff"), "unknown picture format"},
+      {"solve --stats " + stats + " --ply " + missing + "m.ply", "does not exist"},
+      {"view --frames 1 --screenshot " + missing + "w.png", "does not exist"},
+  };
+  for (const auto& [line, message] : cases) {
+    run_result r = run(line);
+    EXPECT_EQ(r.code, 2) << line;
+    EXPECT_NE(r.err.find(message), std::string::npos) << line << ": " << r.err;
+    EXPECT_EQ(r.out, "") << line;
+    EXPECT_FALSE(std::filesystem::exists(stats)) << line << ": the solve ran";
+  }
+}
+
+TEST(Cli, TraceDefaultsToACleanSampleCount) {
+  scratch_dir dir;
+  const std::string stats = dir.path("s.json");
+  ASSERT_EQ(run("trace --quiet --size 8x8 --max-edge 150 --until 0.05 --stats " + stats).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["trace"]["spp"], 16);
+  ASSERT_EQ(run("trace --quiet --integrator path --size 8x8 --stats " + stats).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["trace"]["spp"], 256);
+  EXPECT_NE(run("trace --help").out.find("Default: whitted 16"), std::string::npos);
+}
+
+// Frames at 1, 2, 4, 8, ... shots and the last, not one per shot.
+TEST(Cli, FramesComeAtDoublingShotCounts) {
+  scratch_dir dir;
+  ASSERT_EQ(run("render --quiet --size 16x16 --solver progressive --max-edge 150 --max-shots 20 --until 0 --frames " +
+                dir.path("f"))
+                .code,
+            0);
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path("f"))) names.insert(e.path().filename().string());
+  const std::set<std::string> expected = {"frame_000001.png", "frame_000002.png", "frame_000004.png",
+                                          "frame_000008.png", "frame_000016.png", "frame_000020.png"};
+  EXPECT_EQ(names, expected);
+}
+
+// OpenMesh's own complaints ("complex edge") become one Bounce warning.
+TEST(Cli, LibraryWarningsBecomeBouncesOwn) {
+  scratch_dir dir;
+  run_result r = run("render --quiet --size 16x16 --until 0.05 " + source_path("assets/teapot/teapot.json") +
+                     " --out " + dir.path("t.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("PolyMeshT"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("non-manifold face(s) kept with vertices of their own"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -1,0 +1,88 @@
+#include "image/picture_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include <stb/stb_image_write.h>
+#include <tinyexr.h>
+#include <unistd.h>
+
+namespace bounce {
+
+std::optional<picture_format> picture_format_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".png") return picture_format::png;
+  if (ext == ".pfm") return picture_format::pfm;
+  if (ext == ".exr") return picture_format::exr;
+  if (ext == ".hdr") return picture_format::hdr;
+  return std::nullopt;
+}
+
+bool is_linear(picture_format format) {
+  return format != picture_format::png;
+}
+
+const char* picture_extensions() {
+  return ".png, .pfm, .exr or .hdr";
+}
+
+std::string check_output_path(const std::string& option, const std::string& path, bool picture) {
+  namespace fs = std::filesystem;
+  if (path.empty()) return option + ": the file name is empty";
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return option + " " + path + ": is a folder, not a file";
+  if (picture && !picture_format_of(path))
+    return option + " " + path + ": unknown picture format '" + fs::path(path).extension().string() + "' (use " +
+           picture_extensions() + ")";
+  const fs::path folder = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+  if (!fs::is_directory(folder, ec)) return option + " " + path + ": the folder " + folder.string() + " does not exist";
+  if (::access(folder.c_str(), W_OK) != 0)
+    return option + " " + path + ": the folder " + folder.string() + " is not writable";
+  if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
+    return option + " " + path + ": the file is not writable";
+  return {};
+}
+
+bool write_exr(const std::string& path, const image& img, std::string& error) {
+  const char* message = nullptr;
+  // Half floats: the format's usual storage, 11 bits of mantissa, ample for radiance.
+  if (SaveEXR(img.pixels.data(), img.width, img.height, 3, 1, path.c_str(), &message) != TINYEXR_SUCCESS) {
+    error = path + ": cannot write OpenEXR" + (message ? std::string(": ") + message : std::string());
+    if (message) FreeEXRErrorMessage(message);
+    return false;
+  }
+  return true;
+}
+
+bool write_hdr(const std::string& path, const image& img, std::string& error) {
+  if (!stbi_write_hdr(path.c_str(), img.width, img.height, 3, img.pixels.data())) {
+    error = path + ": cannot write Radiance HDR";
+    return false;
+  }
+  return true;
+}
+
+bool write_picture(const std::string& path, const image& img, double exposure, std::string& error) {
+  const std::optional<picture_format> format = picture_format_of(path);
+  if (!format) {
+    error = path + ": unknown picture format (use " + std::string(picture_extensions()) + ")";
+    return false;
+  }
+  switch (*format) {
+    case picture_format::png: {
+      const std::vector<unsigned char> rows = to_srgb_rows(img, exposure);
+      return write_png(path, img.width, img.height, 3, rows.data(), error);
+    }
+    case picture_format::pfm:
+      return write_pfm(path, img, error);
+    case picture_format::exr:
+      return write_exr(path, img, error);
+    case picture_format::hdr:
+      return write_hdr(path, img, error);
+  }
+  return false;
+}
+
+}  // namespace bounce
