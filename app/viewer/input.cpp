@@ -6,12 +6,15 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <utility>
+
 #include "window.h"
 
 namespace bounce {
 
 panel_actions handle_input(GLFWwindow* window, window_input& input, pointer_state& pointer, orbit_state& orbit,
-                           double fov_y_degrees, bool solver_running, double dt, panel_state& panel) {
+                           double fov_y_degrees, bool solver_running, bool still_running, double dt,
+                           panel_state& panel) {
   ImGuiIO& io = ImGui::GetIO();
   double x = 0, y = 0;
   glfwGetCursorPos(window, &x, &y);
@@ -33,6 +36,10 @@ panel_actions handle_input(GLFWwindow* window, window_input& input, pointer_stat
   input.scroll = 0.0;
 
   panel_actions keys;
+  const bool editing_text = ImGui::IsAnyItemActive() && io.WantTextInput;
+  for (; input.escapes > 0; --input.escapes)
+    if (!editing_text) keys.quit |= escape(panel, solver_running || still_running).quit;
+  keys.quit |= std::exchange(input.quit_now, false);
   if (io.WantCaptureKeyboard) return keys;
   auto down = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
   const double speed = orbit.distance * 0.5 * dt;  // half the viewing distance per second
@@ -79,7 +86,6 @@ panel_actions handle_input(GLFWwindow* window, window_input& input, pointer_stat
         break;
     }
   }
-  if (down(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
   return keys;
 }
 

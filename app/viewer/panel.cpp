@@ -26,7 +26,8 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"P", "screenshot"},
       {"T", "ray trace a still of the current camera"},
       {"H", "this help"},
-      {"Esc", "quit"},
+      {"Esc", "close the open window; else quit (asks while working)"},
+      {"Ctrl+Q", "quit at once"},
   };
   return keys;
 }
@@ -57,6 +58,38 @@ std::vector<float> resample_log(const history_type& history, double end, int sam
     out.push_back(float(std::log10(std::max(value(history[j]), 1e-12))));
   }
   return out;
+}
+
+// A plot of log10 values over time with its axes: the quantity's name on
+// top, percentages at the top, middle and bottom of the y axis, seconds
+// under both ends of the x axis.
+void log_plot(const char* id, const char* title, const std::vector<float>& values, float lo, float hi, double end) {
+  ImGui::TextUnformatted(title);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const std::string labels[3] = {format_percent(std::pow(10.0, double(hi))),
+                                 format_percent(std::pow(10.0, double(lo + hi) / 2.0)),
+                                 format_percent(std::pow(10.0, double(lo)))};
+  float axis = 0.0f;
+  for (const std::string& l : labels) axis = std::max(axis, ImGui::CalcTextSize(l.c_str()).x);
+  axis += style.ItemInnerSpacing.x;
+  const float height = 80.0f, line = ImGui::GetTextLineHeight();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImU32 colour = ImGui::GetColorU32(ImGuiCol_Text);
+  for (int k = 0; k < 3; ++k) {
+    const float y = origin.y + (height - line) * float(k) / 2.0f;
+    draw->AddText(ImVec2(origin.x + axis - style.ItemInnerSpacing.x - ImGui::CalcTextSize(labels[k].c_str()).x, y),
+                  colour, labels[k].c_str());
+  }
+  ImGui::SetCursorScreenPos(ImVec2(origin.x + axis, origin.y));
+  const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x);
+  ImGui::PlotLines(id, values.data(), int(values.size()), 0, nullptr, lo, hi, ImVec2(width, height));
+  char right[32];
+  std::snprintf(right, sizeof right, "%.1f s", end);
+  ImGui::SetCursorScreenPos(ImVec2(origin.x + axis, ImGui::GetCursorScreenPos().y));
+  ImGui::TextUnformatted("0 s");
+  ImGui::SameLine(origin.x + axis + width - ImGui::CalcTextSize(right).x - ImGui::GetWindowPos().x);
+  ImGui::TextUnformatted(right);
 }
 
 }  // namespace
@@ -105,6 +138,30 @@ void send_to_worker(const panel_actions& act, const panel_state& state, solver_w
     worker.restart();
     worker.resume();
   }
+}
+
+panel_actions escape(panel_state& state, bool working) {
+  panel_actions act;
+  if (state.confirm_quit)
+    state.confirm_quit = false;
+  else if (state.show_help)
+    state.show_help = false;
+  else if (state.show_still)
+    state.show_still = false;
+  else if (working)
+    state.confirm_quit = true;
+  else
+    act.quit = true;
+  return act;
+}
+
+std::string format_percent(double fraction) {
+  char text[32];
+  const double percent = 100.0 * fraction;
+  std::snprintf(text, sizeof text, percent >= 1e-3 || percent == 0.0 ? "%.3g%%" : "%.1e%%", percent);
+  std::string s = text;
+  if (const std::size_t e = s.find("e-0"); e != std::string::npos) s.erase(e + 2, 1);
+  return s;
 }
 
 std::string format_tolerance(double value) {
@@ -166,12 +223,13 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
                          const error_status& errors) {
   panel_actions act;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(440, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Bounce");
   // Widgets leave room on their right for the longest label, so that no
   // label is cut off however narrow the panel is made.
   float label_room = 0.0f;
-  for (const char* label : {"stop at residual 10^", "samples per pixel", "max edge (0: auto)", "exposure (stops)"})
+  for (const char* label :
+       {"stop at residual", "samples per pixel", "element size", "exposure (stops)", "link tolerance"})
     label_room = std::max(label_room, ImGui::CalcTextSize(label).x);
   ImGui::PushItemWidth(-(label_room + ImGui::GetStyle().ItemInnerSpacing.x));
 
@@ -188,10 +246,25 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
         }
       ImGui::EndCombo();
     }
+    if (!state.recent_scenes.empty() && ImGui::BeginCombo("recent", "choose...")) {
+      for (const std::string& s : state.recent_scenes)
+        if (ImGui::Selectable(s.c_str())) {
+          state.scene_path = s;
+          act.open_scene = true;
+        }
+      ImGui::EndCombo();
+    }
     if (ImGui::Button("Open")) act.open_scene = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("or drop a file on the window");
   }
-  // Errors stay visible whatever is collapsed; the previous scene keeps running.
-  if (!view.error.empty()) ImGui::TextColored(ImVec4(1, 0.35f, 0.3f, 1), "%s", view.error.c_str());
+  // Errors stay visible whatever is collapsed, wrapped in full; the
+  // previous scene keeps running.
+  if (!view.error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
+    ImGui::TextWrapped("%s", view.error.c_str());
+    ImGui::PopStyleColor();
+  }
 
   if (ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
     solver_settings& solver = state.solver;
@@ -204,9 +277,19 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
       ImGui::EndCombo();
     }
     const bool hierarchical = solver.method == solver_method::hierarchical;
-    float max_edge = float(solver.max_edge);
-    ImGui::InputFloat("max edge (0: auto)", &max_edge, 0, 0, "%.4g");
-    solver.max_edge = std::max(0.0f, max_edge);
+    // The element size in scene units: automatic (shown as the mesher
+    // chose it) until a size is typed.
+    bool automatic = solver.max_edge <= 0.0;
+    float max_edge = float(automatic && view.mesh ? view.mesh->max_edge : solver.max_edge);
+    if (ImGui::Checkbox("auto", &automatic)) solver.max_edge = automatic ? 0.0 : double(max_edge);
+    ImGui::SameLine();
+    if (automatic) ImGui::BeginDisabled();
+    if (ImGui::InputFloat("element size", &max_edge, 0, 0, "%.4g scene units") && !automatic)
+      solver.max_edge = std::max(0.0f, max_edge);
+    if (automatic) ImGui::EndDisabled();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(hierarchical ? "longest edge of the starting elements (split further where the light needs it)"
+                                     : "longest element edge");
     if (hierarchical) {
       // A log scale from 1e-8 to 1e-2 of the emitted power, two digits.
       float exponent = float(std::log10(std::clamp(solver.link_tolerance, 1e-8, 1e-2)));
@@ -232,11 +315,19 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     }
     stop_criterion& stop = solver.stop;
     float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
-    // Applies at once; the value is left as typed until the slider moves.
-    if (ImGui::SliderFloat(hierarchical ? "stop at residual 10^" : "stop at unshot 10^", &until, -8.0f, 0.0f, "%.1f")) {
-      stop.unshot_fraction = std::pow(10.0, double(until));
+    // A log scale shown as a percentage of the emitted power (ImGui's
+    // format string: % doubled). Applies at once.
+    std::string shown_stop = format_percent(stop.unshot_fraction);
+    for (std::size_t at = shown_stop.find('%'); at != std::string::npos; at = shown_stop.find('%', at + 2))
+      shown_stop.insert(at, 1, '%');
+    if (ImGui::SliderFloat(hierarchical ? "stop at residual" : "stop at unshot", &until, -8.0f, 0.0f,
+                           shown_stop.c_str(), ImGuiSliderFlags_NoRoundToFormat)) {
+      stop.unshot_fraction = std::strtod(format_tolerance(std::pow(10.0, double(until))).c_str(), nullptr);
       act.set_stop = true;
     }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(hierarchical ? "stop when what one more iteration would move is below this share of the power"
+                                     : "stop when the power not yet shot is below this share of the emitted power");
     if (!hierarchical) {
       // Adaptive meshing: refine where the light changes (applies on re-mesh).
       adaptive_params& adaptive = solver.adaptive;
@@ -272,17 +363,17 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     // one time axis.
     const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
                                 errors.history.empty() ? 0.0 : errors.history.back().seconds);
-    char label[64];
-    std::snprintf(label, sizeof label, "0 .. %.2f s", end);
     const std::vector<float> plot =
         resample_log(view.history, end, 120, [](const convergence_point& p) { return p.unshot_fraction; });
     if (!plot.empty())
-      ImGui::PlotLines(hierarchical ? "log10 residual" : "log10 unshot", plot.data(), int(plot.size()), 0, label, -8.0f,
-                       0.0f, ImVec2(0, 80));
+      log_plot("##unshot",
+               hierarchical ? "residual (share of the power, log scale) against time"
+                            : "unshot power (share of the emitted, log scale) against time",
+               plot, -8.0f, 0.0f, end);
     const std::vector<float> error_plot =
         resample_log(errors.history, end, 120, [](const error_point& p) { return p.error; });
     if (!error_plot.empty())
-      ImGui::PlotLines("log10 error", error_plot.data(), int(error_plot.size()), 0, label, -3.0f, 0.0f, ImVec2(0, 80));
+      log_plot("##error", "error of the picture (relative RMSE, log scale) against time", error_plot, -3.0f, 0.0f, end);
     if (errors.computing) {
       ImGui::ProgressBar(float(errors.progress), ImVec2(-80, 0));
       ImGui::SameLine();
@@ -352,9 +443,9 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
   ImGui::PopItemWidth();
   ImGui::End();
 
-  if (still.texture) {
-    ImGui::SetNextWindowPos(ImVec2(340, 8), ImGuiCond_FirstUseEver);
-    ImGui::Begin("Ray-traced still", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (still.texture && state.show_still) {
+    ImGui::SetNextWindowPos(ImVec2(460, 8), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Ray-traced still", &state.show_still, ImGuiWindowFlags_AlwaysAutoResize);
     // Shown at most 480 pixels wide; saved at full size.
     const float scale = std::min(1.0f, 480.0f / float(std::max(still.width, 1)));
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(still.texture)),
@@ -378,6 +469,18 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::Begin("Keyboard and mouse", &state.show_help, ImGuiWindowFlags_AlwaysAutoResize);
     for (const auto& [key, what] : shortcuts()) ImGui::Text("%-30s %s", key.c_str(), what.c_str());
     ImGui::End();
+  }
+  if (state.confirm_quit) {
+    ImGui::OpenPopup("Quit?");
+    if (ImGui::BeginPopupModal("Quit?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::TextUnformatted(still.running ? "A still is being traced. Quit anyway?"
+                                           : "The solver is running. Quit anyway?");
+      if (ImGui::Button("Quit")) act.quit = true;
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel")) state.confirm_quit = false;
+      if (!state.confirm_quit) ImGui::CloseCurrentPopup();
+      ImGui::EndPopup();
+    }
   }
   return act;
 }

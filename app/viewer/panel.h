@@ -35,14 +35,17 @@ struct still_status {
 
 struct panel_state {
   std::string scene_path;
-  std::vector<std::string> asset_scenes;  // offered in a list
-  solver_settings solver;                 // mesh density, method and its settings, criterion
+  std::vector<std::string> asset_scenes;   // offered in a list
+  std::vector<std::string> recent_scenes;  // most recent first
+  solver_settings solver;                  // mesh density, method and its settings, criterion
   gl::display_settings display;
   bool screenshot_with_panel = false;
   std::string screenshot_path = "bounce-screenshot.png";
   still_settings still;
   bool show_help = false;
-  std::string message;  // last action's result, e.g. where a screenshot went
+  bool show_still = false;    // the still's window; closed by its X or Esc, opened by a new still
+  bool confirm_quit = false;  // the "quit while working?" popup
+  std::string message;        // last action's result, e.g. where a screenshot went
 };
 
 struct panel_actions {
@@ -56,7 +59,14 @@ struct panel_actions {
   bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
   bool compute_reference = false;  // path trace a reference of the camera for the error plot
   bool set_stop = false;           // the stopping point changed: the running solver takes it
+  bool quit = false;               // close the window
 };
+
+// Esc, as people expect it: it closes what is open first (the help, the
+// quit question, the still's window), and quits only when nothing is;
+// while the solver or a still is working, it asks first. Ctrl+Q quits at
+// once (handle_input).
+panel_actions escape(panel_state& state, bool working);
 
 // Draws the panel into the current ImGui frame. `frame_ms` is the last
 // frame's time, shown with the statistics.
@@ -87,6 +97,9 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
 
 // A tolerance as the panel shows it: "1e-5", "2.5e-6".
 std::string format_tolerance(double value);
+
+// A fraction as a percentage, three significant digits: "100%", "0.1%", "2.5e-5%".
+std::string format_percent(double fraction);
 
 // The keyboard shortcuts, shown in the help popup and handled by the window.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

@@ -46,6 +46,7 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
       p.diffuse = diffuse_source::ambient;
     }
     auto out = std::make_shared<still_result>();
+    out->source = source;
     out->picture = trace_image(*source, view, rays, field.get(), p, progress.get(), &out->stats);
     if (!out->stats.cancelled) {
       const trace_stats& st = out->stats;

@@ -17,8 +17,9 @@
 namespace bounce {
 
 struct still_result {
-  std::uint64_t version = 0;  // increases with every finished still
-  image picture;              // linear radiance
+  std::uint64_t version = 0;            // increases with every finished still
+  std::shared_ptr<const scene> source;  // the scene it shows
+  image picture;                        // linear radiance
   trace_stats stats;
   std::string summary;  // one line for the panel: size, samples, time, rays
 };

@@ -23,12 +23,15 @@
 #include "scripted_run.h"
 #include "solver_worker.h"
 #include "still_job.h"
+#include "user_files.h"
 #include "window.h"
 
 namespace bounce {
 namespace {
 
 using clock_type = std::chrono::steady_clock;
+
+const char* const tracing_message = "tracing a still...";
 
 double milliseconds_since(clock_type::time_point start) {
   return 1000.0 * std::chrono::duration<double>(clock_type::now() - start).count();
@@ -73,6 +76,7 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.save_still_pfm |= b.save_still_pfm;
   a.compute_reference |= b.compute_reference;
   a.set_stop |= b.set_stop;
+  a.quit |= b.quit;
   return a;
 }
 
@@ -161,7 +165,9 @@ viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& ini
   if (options.start_paused) worker_.pause();
   panel_.scene_path = initial.source;
   panel_.solver = solver;
-  panel_.asset_scenes = find_scenes("assets");
+  panel_.asset_scenes = find_asset_scenes();
+  panel_.recent_scenes = read_recent_scenes();
+  glfwSetWindowTitle(window, window_title(initial.source).c_str());
   if (!options.still_path.empty()) {  // a scripted still has the scene camera's --size
     panel_.still.window_size = false;
     panel_.still.size[0] = initial.view.width;
@@ -189,11 +195,19 @@ void viewer_app::take_published_work(const worker_view& view) {
     uploaded_solution_.reset();
   }
   if (view.source != shown_source_) {
-    if (shown_source_) {  // a newly opened scene brings its camera
+    if (shown_source_) {  // a newly opened scene brings its camera, and the old still goes
       scene_camera_ = view.source->view;
       orbit_ = orbit_from_camera(scene_camera_);
+      still_.cancel();
+      if (still_shown_.texture) glDeleteTextures(1, &still_shown_.texture);
+      still_shown_ = {};
+      panel_.show_still = false;
     }
     shown_source_ = view.source;
+    if (view.source) {
+      glfwSetWindowTitle(window_, window_title(view.source->source).c_str());
+      panel_.recent_scenes = remember_scene(view.source->source);
+    }
   }
   if (view.solution && view.solution != uploaded_solution_) {
     const auto start = clock_type::now();
@@ -213,7 +227,12 @@ void viewer_app::take_published_work(const worker_view& view) {
 
 void viewer_app::take_still(int frame) {
   if (const auto result = still_.result();
-      result && (result->version != still_uploaded_ || panel_.display.exposure != still_exposure_)) {
+      result && result->source == shown_source_ &&
+      (result->version != still_uploaded_ || panel_.display.exposure != still_exposure_)) {
+    if (result->version != still_uploaded_) {  // a new still: show it, and say it is done
+      panel_.show_still = true;
+      if (panel_.message == tracing_message) panel_.message.clear();
+    }
     upload_still(still_shown_.texture, result->picture, panel_.display.exposure);
     still_shown_.width = result->picture.width;
     still_shown_.height = result->picture.height;
@@ -287,7 +306,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
       cam.height = panel_.still.size[1];
     }
     still_.start(view.source, cam, view.mesh, view.solution, still_params(panel_.still));
-    panel_.message = "tracing a still...";
+    panel_.message = tracing_message;
   }
   // The reference is of the camera as it is now, 64x64 pixels.
   if ((act.compute_reference || (options_.error_plot && !reference_requested_)) && view.source) {
@@ -298,6 +317,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
     still_.cancel();
     panel_.message = "still cancelled";
   }
+  if (act.quit) glfwSetWindowShouldClose(window_, GLFW_TRUE);
   if ((act.save_still_png || act.save_still_pfm) && still_.result()) {
     const image& picture = still_.result()->picture;
     const std::string& path = act.save_still_png ? panel_.still.png_path : panel_.still.pfm_path;
@@ -330,8 +350,13 @@ int viewer_app::run() {
     timing_.frame(frame, frame_ms_);
 
     // Input: ImGui first; the view gets what the panel does not want.
-    panel_actions keys =
-        handle_input(window_, input_, pointer_, orbit_, scene_camera_.fov_y_degrees, view->running, dt, panel_);
+    panel_actions keys = handle_input(window_, input_, pointer_, orbit_, scene_camera_.fov_y_degrees, view->running,
+                                      still_.running(), dt, panel_);
+    if (!input_.dropped.empty()) {  // a file dropped on the window opens like the panel's Open
+      panel_.scene_path = input_.dropped.back();
+      input_.dropped.clear();
+      keys.open_scene = true;
+    }
     glfwGetFramebufferSize(window_, &width_, &height_);
     const panel_actions act = draw(*view, frame, keys);
     glfwSwapBuffers(window_);

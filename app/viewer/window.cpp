@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <vector>
 
 #include <glad/gl.h>
@@ -16,6 +17,20 @@ namespace {
 
 void on_scroll(GLFWwindow* window, double, double dy) {
   static_cast<window_input*>(glfwGetWindowUserPointer(window))->scroll += dy;
+}
+
+// Keys that act however ImGui is focused: Esc (the viewer decides what it
+// closes) and Ctrl+Q. ImGui chains its own callback to this one.
+void on_key(GLFWwindow* window, int key, int, int action, int mods) {
+  if (action != GLFW_PRESS) return;
+  auto* input = static_cast<window_input*>(glfwGetWindowUserPointer(window));
+  if (key == GLFW_KEY_ESCAPE) ++input->escapes;
+  if (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)) input->quit_now = true;
+}
+
+void on_drop(GLFWwindow* window, int count, const char** paths) {
+  auto* input = static_cast<window_input*>(glfwGetWindowUserPointer(window));
+  for (int i = 0; i < count; ++i) input->dropped.emplace_back(paths[i]);
 }
 
 void on_glfw_error(int code, const char* message) {
@@ -69,8 +84,17 @@ GLFWwindow* open_window(int width, int height, int msaa, window_input& input, st
     return nullptr;
   }
   glfwSetWindowUserPointer(window, &input);
-  glfwSetScrollCallback(window, on_scroll);  // before ImGui, which chains to it
+  glfwSetScrollCallback(window, on_scroll);  // before ImGui, which chains to them
+  glfwSetKeyCallback(window, on_key);
+  glfwSetDropCallback(window, on_drop);
   return window;
+}
+
+std::string window_title(const std::string& scene_source) {
+  std::string name = std::filesystem::path(scene_source).filename().string();
+  if (scene_source.starts_with("generated:") || scene_source.starts_with("embedded:") || name.empty())
+    name = scene_source;
+  return name + " - Bounce";
 }
 
 void close_window(GLFWwindow* window) {

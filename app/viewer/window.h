@@ -3,14 +3,21 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
 namespace bounce {
 
 struct window_input {
-  double scroll = 0.0;  // wheel steps since the last frame
+  double scroll = 0.0;               // wheel steps since the last frame
+  int escapes = 0;                   // Esc presses since the last frame
+  bool quit_now = false;             // Ctrl+Q since the last frame
+  std::vector<std::string> dropped;  // paths dropped on the window since the last frame
 };
+
+// The window's title for a scene: "cornell_box.json - Bounce".
+std::string window_title(const std::string& scene_source);
 
 // Opens a width x height window. `msaa` samples, or -1: 4 on a GPU and none
 // on software GL (llvmpipe renders on the CPU, where 4x MSAA doubles the

@@ -3,6 +3,8 @@
 // statistics follow the solver that runs, and the panel laid out headless
 // (ImGui needs no renderer to lay out) fits its labels.
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include "panel.h"
 #include "scene/scene_io.h"
 #include "solver_worker.h"
+#include "user_files.h"
 
 namespace bounce {
 namespace {
@@ -198,6 +201,68 @@ TEST(Panel, LabelsFitThePanelForEitherSolver) {
     EXPECT_LE(window->ContentSize.x, room + 0.5f) << name_of(method);
   }
   ImGui::DestroyContext();
+}
+
+// Esc closes what is open first, asks before quitting while work runs, and
+// quits when nothing is open and nothing runs.
+TEST(Panel, EscapeClosesWhatIsOpenBeforeQuitting) {
+  panel_state panel;
+  panel.show_help = true;
+  panel.show_still = true;
+  EXPECT_FALSE(escape(panel, true).quit);
+  EXPECT_FALSE(panel.show_help);
+  EXPECT_TRUE(panel.show_still);
+  EXPECT_FALSE(escape(panel, true).quit);
+  EXPECT_FALSE(panel.show_still);
+  EXPECT_FALSE(escape(panel, true).quit);  // the solver runs: ask
+  EXPECT_TRUE(panel.confirm_quit);
+  EXPECT_FALSE(escape(panel, true).quit);  // Esc again closes the question
+  EXPECT_FALSE(panel.confirm_quit);
+  EXPECT_TRUE(escape(panel, false).quit);  // nothing open, nothing running
+}
+
+TEST(Panel, StoppingPointsReadAsPercentages) {
+  EXPECT_EQ(format_percent(0.01), "1%");
+  EXPECT_EQ(format_percent(0.001), "0.1%");
+  EXPECT_EQ(format_percent(2.5e-4), "0.025%");
+  EXPECT_EQ(format_percent(1e-8), "1.0e-6%");
+  EXPECT_EQ(format_percent(1.0), "100%");
+  EXPECT_EQ(format_percent(0.0123), "1.23%");
+}
+
+// The shipped scenes are found from where the executable is, not from the
+// current folder, and the built-in ones are always offered.
+TEST(Panel, AssetScenesAreFoundNextToTheExecutable) {
+  const std::vector<std::string> scenes = find_asset_scenes(std::filesystem::path(BOUNCE_BINARY_DIR) / "bounce");
+  auto has = [&](const std::string& end) {
+    return std::any_of(scenes.begin(), scenes.end(), [&](const std::string& s) { return s.ends_with(end); });
+  };
+  EXPECT_TRUE(has("assets/cornell_box/cornell_box.json")) << scenes.size();
+  EXPECT_TRUE(has("assets/teapot/teapot.json"));
+  EXPECT_TRUE(has("embedded:cornell_box/cornell_box.json"));
+  EXPECT_TRUE(has("generated:box-room-60"));
+  // Nowhere near a checkout: the built-in scenes remain.
+  const std::vector<std::string> bare = find_asset_scenes("/nonexistent/bin/bounce");
+  EXPECT_GE(bare.size(), 3u);
+}
+
+TEST(Panel, RecentScenesAreKeptMostRecentFirst) {
+  const std::filesystem::path home = std::filesystem::temp_directory_path() / "bounce_tests" / "recent_config";
+  std::filesystem::remove_all(home);
+  ::setenv("XDG_CONFIG_HOME", home.c_str(), 1);
+  EXPECT_TRUE(read_recent_scenes().empty());
+  remember_scene("/scenes/a.json");
+  remember_scene("generated:interior-10k");
+  remember_scene("embedded:cornell_box/cornell_box.json");  // the default is not listed
+  std::vector<std::string> recent = remember_scene("/scenes/a.json");
+  EXPECT_EQ(recent, (std::vector<std::string>{"/scenes/a.json", "generated:interior-10k"}));
+  EXPECT_EQ(read_recent_scenes(), recent);  // kept on disk
+  for (int i = 0; i < 15; ++i) recent = remember_scene("/scenes/" + std::to_string(i) + ".json");
+  EXPECT_EQ(recent.size(), 10u);
+  EXPECT_EQ(recent.front(), "/scenes/14.json");
+  EXPECT_TRUE(std::filesystem::exists(home / "bounce" / "recent.txt"));
+  ::unsetenv("XDG_CONFIG_HOME");
+  std::filesystem::remove_all(home);
 }
 
 }  // namespace

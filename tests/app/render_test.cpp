@@ -535,5 +535,30 @@ TEST(HeadlessImages, NoArgumentsRendersTheDefaultScene) {
   EXPECT_NE(text.find("wrote " + dir.path("bounce.png")), std::string::npos) << text;
 }
 
+// The title bar names the scene, and the scene joins the recent list kept
+// in the user's configuration folder.
+TEST(Window, TitleNamesTheSceneAndItJoinsTheRecentList) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xwininfo >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run or xwininfo is not installed (third_party/install-deps.sh installs them)";
+  scratch_dir dir;
+  const std::string scene = source_path("assets/cornell_box/cornell_box.json");
+  // Inside one X server: start the window, poll the window tree (at most
+  // 60 s) until a window with the title shows, then let the scripted run end.
+  const std::string script = "XDG_CONFIG_HOME=" + dir.path("config") + " ASAN_OPTIONS=detect_leaks=0 " +
+                             std::string(BOUNCE_EXE) + " view " + scene +
+                             " --max-edge 150 --frames 150 --exit >/dev/null 2>&1 & "
+                             "for i in $(seq 600); do xwininfo -root -tree | grep -q 'cornell_box.json - Bounce' && "
+                             "{ echo found > " +
+                             dir.path("title.txt") + "; break; }; sleep 0.1; done; wait";
+  const std::string command = "xvfb-run -a sh " + dir.write("run.sh", script + "\n");
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("title.txt"))) << "no window titled 'cornell_box.json - Bounce'";
+  std::ifstream recent(dir.path("config/bounce/recent.txt"));
+  std::string first;
+  std::getline(recent, first);
+  EXPECT_EQ(first, std::filesystem::path(scene).lexically_normal().string());
+}
+
 }  // namespace
 }  // namespace bounce

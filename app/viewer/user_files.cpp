@@ -1,0 +1,72 @@
+#include "user_files.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+
+#include "panel.h"
+
+namespace bounce {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t max_recent = 10;
+
+fs::path recent_file() {
+  const fs::path folder = config_folder();
+  return folder.empty() ? fs::path() : folder / "recent.txt";
+}
+
+}  // namespace
+
+fs::path config_folder() {
+  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg) return fs::path(xdg) / "bounce";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".config" / "bounce";
+  return {};
+}
+
+std::vector<std::string> find_asset_scenes(const fs::path& exe) {
+  std::error_code ec;
+  const fs::path self = exe.empty() ? fs::read_symlink("/proc/self/exe", ec) : exe;
+  const fs::path dir = self.parent_path();
+  std::vector<std::string> scenes;
+  for (const fs::path& candidate :
+       {dir / "assets", dir.parent_path() / "assets", dir.parent_path().parent_path() / "assets",
+        dir.parent_path() / "share" / "bounce" / "assets", fs::current_path(ec) / "assets"}) {
+    if (!fs::is_directory(candidate, ec)) continue;
+    scenes = find_scenes(fs::weakly_canonical(candidate, ec).string());
+    if (!scenes.empty()) break;
+  }
+  for (const char* builtin :
+       {"embedded:cornell_box/cornell_box.json", "generated:box-room-60", "generated:interior-100k"})
+    scenes.emplace_back(builtin);
+  return scenes;
+}
+
+std::vector<std::string> read_recent_scenes() {
+  std::vector<std::string> recent;
+  std::ifstream in(recent_file());
+  for (std::string line; recent.size() < max_recent && std::getline(in, line);)
+    if (!line.empty()) recent.push_back(line);
+  return recent;
+}
+
+std::vector<std::string> remember_scene(const std::string& source) {
+  std::vector<std::string> recent = read_recent_scenes();
+  if (source.starts_with("embedded:")) return recent;
+  std::error_code ec;
+  const bool named = source.starts_with("generated:");
+  const std::string entry = named ? source : fs::absolute(source, ec).lexically_normal().string();
+  std::erase(recent, entry);
+  recent.insert(recent.begin(), entry);
+  if (recent.size() > max_recent) recent.resize(max_recent);
+  const fs::path file = recent_file();
+  if (file.empty()) return recent;
+  fs::create_directories(file.parent_path(), ec);
+  std::ofstream out(file);
+  for (const std::string& r : recent) out << r << "\n";
+  return recent;
+}
+
+}  // namespace bounce

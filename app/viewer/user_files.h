@@ -1,0 +1,32 @@
+// Files the window finds or keeps for its user: the scenes shipped with
+// Bounce wherever it runs from, and the recently opened scenes, kept in the
+// user's configuration folder ($XDG_CONFIG_HOME/bounce, else
+// ~/.config/bounce).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace bounce {
+
+// The user's configuration folder for Bounce; empty when neither
+// XDG_CONFIG_HOME nor HOME is set.
+std::filesystem::path config_folder();
+
+// The shipped scenes: assets/*/*.json in the first assets folder found next
+// to the executable (`exe`; default: this process's), above it (a build
+// folder inside the source tree), in ../share/bounce (installed), or in the
+// current folder; then the built-in and generated scenes, which need no
+// files.
+std::vector<std::string> find_asset_scenes(const std::filesystem::path& exe = {});
+
+// The recently opened scenes, most recent first (at most 10).
+std::vector<std::string> read_recent_scenes();
+
+// Puts `source` first in the recent list (files as absolute paths; the
+// built-in default is not listed), saves the list, and returns it. A list
+// that cannot be saved stays in memory: it is a convenience, not data.
+std::vector<std::string> remember_scene(const std::string& source);
+
+}  // namespace bounce
