@@ -659,10 +659,15 @@ void read_obj_statements(const std::string& path, const std::string_view text, s
 texture read_image_texture(const std::string& path, const std::string& name, const std::string& where) {
   std::optional<std::string> bytes = read_file(path);
   if (!bytes) throw load_error(where + ": cannot read texture '" + path + "'");
+  return decode_image_texture(*bytes, name, where, "texture '" + path + "'");
+}
+
+texture decode_image_texture(std::string_view bytes, const std::string& name, const std::string& where,
+                             const std::string& what) {
   int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes->data()),
-                                                static_cast<int>(bytes->size()), &w, &h, &channels, 3);
-  if (!pixels) throw load_error(where + ": cannot decode texture '" + path + "': " + stbi_failure_reason());
+  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                static_cast<int>(bytes.size()), &w, &h, &channels, 3);
+  if (!pixels) throw load_error(where + ": cannot decode " + what + ": " + stbi_failure_reason());
   texture t;
   t.name = name;
   t.kind = texture_kind::image;

@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scene/scene.h"
@@ -45,5 +46,10 @@ obj_read_result read_obj(const std::string& path, std::vector<material>& materia
 // Reads an image texture (PNG, JPEG, ... via stb_image) into linear RGB.
 // Throws load_error naming `where` (the file and line that asked for it).
 texture read_image_texture(const std::string& path, const std::string& name, const std::string& where);
+
+// The same for an image already in memory (one inside a glTF file); `what`
+// names it in the message ("image 2").
+texture decode_image_texture(std::string_view bytes, const std::string& name, const std::string& where,
+                             const std::string& what);
 
 }  // namespace bounce

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/embedded.h"
+#include "scene/gltf_io.h"
 #include "scene/obj_io.h"
 #include "scene/procedural.h"
 #include "scene/scene_validate.h"
@@ -535,6 +536,11 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
       report.warnings = std::move(obj.warnings);
       report.dropped_faces = obj.dropped_faces;
       s.view = fit_camera(s);
+    } else if (ends_with_icase(path, ".gltf") || ends_with_icase(path, ".glb")) {
+      gltf_read_result gltf = read_gltf(path, s.materials, s.textures);
+      s.surfaces = std::move(gltf.surfaces);
+      report.warnings = std::move(gltf.warnings);
+      s.view = fit_camera(s);
     } else if (path.starts_with(generated_prefix)) {
       std::string error;
       if (!make_procedural_scene(std::string_view(path).substr(generated_prefix.size()), s, error))
@@ -547,7 +553,7 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
       scene_builder builder{json_reader{path}, s, report, {}};
       builder.read(doc);
     } else {
-      throw load_error(path + ": unknown scene format (expected .json, .obj or generated:NAME)");
+      throw load_error(path + ": unknown scene format (expected .json, .obj, .gltf, .glb or generated:NAME)");
     }
     drop_degenerate_faces(s, report);
     if (s.surfaces.empty()) throw load_error(path + ": no surfaces left after dropping degenerate faces");

@@ -26,8 +26,8 @@ struct load_report {
 // e.g. "generated:interior-1m"; nothing is read from disk.
 inline constexpr std::string_view generated_prefix = "generated:";
 
-// Loads a .json scene, a bare .obj (its camera fitted to the geometry) or a
-// procedural scene ("generated:NAME") and validates it. On failure returns false, fills report.error with a message
+// Loads a .json scene, a bare .obj or a glTF 2.0 .gltf/.glb (their camera
+// fitted to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills report.error with a message
 // naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
 

@@ -1,0 +1,29 @@
+// glTF 2.0 reader (.gltf with its buffers and images, or .glb) on Debian's
+// tinygltf, which parses the JSON and fetches the bytes. tinygltf trusts
+// the file's indices and byte ranges; this reader checks every one, so a
+// bad file gets a message naming the file and the mesh, primitive or
+// accessor, never a read out of bounds.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/obj_io.h"  // load_error
+#include "scene/scene.h"
+
+namespace bounce {
+
+struct gltf_read_result {
+  std::vector<surface> surfaces;  // one polygon mesh per node that holds a mesh
+  std::vector<std::string> warnings;
+};
+
+// Reads `path` (the scene's default scene, or scene 0): triangles with
+// their node transforms applied, base colour as rho (texture included),
+// emission as ke. New materials and textures are appended to the lists and
+// faces refer to them by index. What Bounce cannot use (metallic,
+// roughness, normal maps, cameras, lights, animation, ...) gets one warning
+// per kind. Throws load_error.
+gltf_read_result read_gltf(const std::string& path, std::vector<material>& materials, std::vector<texture>& textures);
+
+}  // namespace bounce

@@ -1,0 +1,547 @@
+// glTF 2.0 import: small .gltf (base64 data URIs) and .glb files written
+// here, read through load_scene as `bounce x.gltf` reads them. Geometry and
+// node transforms, base colour textures (linear texels, uv the right way
+// up), emission, warnings for what is ignored, and bad files (each an error
+// naming the file, never a crash).
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+#include <nlohmann/json.hpp>
+
+#include "measure/closed_forms.h"
+#include "mesh_builders.h"
+#include "radiosity/radiosity.h"
+#include "scene/obj_io.h"
+#include "scene/scene_io.h"
+#include "scene/texture.h"
+#include "test_files.h"
+
+namespace bounce {
+namespace {
+
+using json = nlohmann::json;
+using testing::scratch_dir;
+
+std::string base64(const std::string& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const std::uint32_t v = std::uint8_t(bytes[i]) << 16 | std::uint8_t(bytes[i + 1]) << 8 | std::uint8_t(bytes[i + 2]);
+    for (int k = 18; k >= 0; k -= 6) out += table[(v >> k) & 63];
+  }
+  if (i < bytes.size()) {
+    std::uint32_t v = std::uint8_t(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) v |= std::uint8_t(bytes[i + 1]) << 8;
+    out += table[(v >> 18) & 63];
+    out += table[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+// A glTF document and its one binary buffer, built up piece by piece.
+struct gltf_file {
+  json doc = {{"asset", {{"version", "2.0"}}}};
+  std::string bin;
+
+  int view(const void* data, std::size_t n) {
+    while (bin.size() % 4) bin += '\0';
+    const std::size_t offset = bin.size();
+    bin.append(static_cast<const char*>(data), n);
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", n}});
+    return int(doc["bufferViews"].size()) - 1;
+  }
+  int floats(const std::vector<float>& v, const char* type, int components) {
+    const int bv = view(v.data(), v.size() * sizeof(float));
+    doc["accessors"].push_back(
+        {{"bufferView", bv}, {"componentType", 5126}, {"count", v.size() / components}, {"type", type}});
+    return int(doc["accessors"].size()) - 1;
+  }
+  int indices(const std::vector<std::uint16_t>& v) {
+    const int bv = view(v.data(), v.size() * sizeof(std::uint16_t));
+    doc["accessors"].push_back({{"bufferView", bv}, {"componentType", 5123}, {"count", v.size()}, {"type", "SCALAR"}});
+    return int(doc["accessors"].size()) - 1;
+  }
+  int material(const json& m) {
+    doc["materials"].push_back(m);
+    return int(doc["materials"].size()) - 1;
+  }
+  // A vector, not a json: `json{object}` would copy the object, not make an array.
+  int mesh(const std::vector<json>& primitives) {
+    doc["meshes"].push_back({{"primitives", primitives}});
+    return int(doc["meshes"].size()) - 1;
+  }
+  int node(const json& n) {
+    doc["nodes"].push_back(n);
+    return int(doc["nodes"].size()) - 1;
+  }
+  // Each node listed becomes a root of scene 0.
+  void roots(const std::vector<int>& nodes) { doc["scenes"] = {{{"nodes", nodes}}}; }
+
+  std::string gltf_text() const {
+    json d = doc;
+    d["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
+    return d.dump();
+  }
+  std::string glb() const {
+    json d = doc;
+    d["buffers"] = {{{"byteLength", bin.size()}}};
+    std::string text = d.dump();
+    while (text.size() % 4) text += ' ';
+    std::string payload = bin;
+    while (payload.size() % 4) payload += '\0';
+    auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    return "glTF" + u32(2) + u32(std::uint32_t(12 + 8 + text.size() + 8 + payload.size())) +
+           u32(std::uint32_t(text.size())) + "JSON" + text + u32(std::uint32_t(payload.size())) + "BIN" +
+           std::string(1, '\0') + payload;
+  }
+};
+
+// A unit quad in the z = 0 plane facing +z, with uvs in glTF's convention
+// (v = 0 at the image's top): corner (0, 1, 0) is the image's top left.
+json unit_quad(gltf_file& f, int material, bool with_normals = true, bool with_uv = true) {
+  json attributes = {{"POSITION", f.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3)}};
+  if (with_normals) attributes["NORMAL"] = f.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+  if (with_uv) attributes["TEXCOORD_0"] = f.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+  json prim = {{"attributes", attributes}, {"indices", f.indices({0, 1, 2, 0, 2, 3})}};
+  if (material >= 0) prim["material"] = material;
+  return prim;
+}
+
+// A 2x2 PNG: top row red and green, bottom row blue and sRGB grey 128.
+std::string png_2x2() {
+  const unsigned char pixels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+  std::string out;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
+      },
+      &out, 2, 2, 3, pixels, 6);
+  return out;
+}
+
+bool load(const std::string& path, scene& s, load_report& report) {
+  const bool ok = load_scene(path, s, report);
+  EXPECT_TRUE(ok) << report.error;
+  return ok;
+}
+
+std::string error_of(const std::string& path) {
+  scene s;
+  load_report report;
+  EXPECT_FALSE(load_scene(path, s, report)) << path << " should fail";
+  EXPECT_NE(report.error.find(path), std::string::npos) << "the error should name the file: " << report.error;
+  return report.error;
+}
+
+const polygon_mesh& only_mesh(const scene& s) {
+  EXPECT_EQ(s.surfaces.size(), 1u);
+  return std::get<polygon_mesh>(s.surfaces.at(0).geometry);
+}
+
+// The uv at point p of the mesh (p must lie on one of its triangles).
+std::optional<vec2> uv_at(const polygon_mesh& m, const vec3& p) {
+  for (const polygon_face& f : m.faces) {
+    const vec3 a = m.positions[f.position[0]], b = m.positions[f.position[1]], c = m.positions[f.position[2]];
+    const vec3 n = glm::cross(b - a, c - a);
+    const double area = glm::dot(n, n);
+    const double wb = glm::dot(glm::cross(p - a, c - a), n) / area;
+    const double wc = glm::dot(glm::cross(b - a, p - a), n) / area;
+    if (wb >= -1e-12 && wc >= -1e-12 && wb + wc <= 1 + 1e-12)
+      return (1 - wb - wc) * m.uvs[f.uv[0]] + wb * m.uvs[f.uv[1]] + wc * m.uvs[f.uv[2]];
+  }
+  return std::nullopt;
+}
+
+vec3 newell_normal(const polygon_mesh& m, const polygon_face& f) {
+  vec3 n(0.0);
+  for (std::size_t i = 0; i < f.position.size(); ++i)
+    n += glm::cross(m.positions[f.position[i]], m.positions[f.position[(i + 1) % f.position.size()]]);
+  return glm::normalize(n);
+}
+
+bool has_warning(const load_report& r, const std::string& text) {
+  for (const std::string& w : r.warnings)
+    if (w.find(text) != std::string::npos) return true;
+  return false;
+}
+
+int count_warnings(const load_report& r, const std::string& text) {
+  int n = 0;
+  for (const std::string& w : r.warnings) n += w.find(text) != std::string::npos;
+  return n;
+}
+
+TEST(Gltf, TexturedQuadHasLinearTexelsAndUvTheRightWayUp) {
+  scratch_dir dir;
+  const std::string png = png_2x2();
+  // The same quad three ways: image in the .glb's buffer, image as a data
+  // URI, image as a file next to the .gltf.
+  for (int form = 0; form < 3; ++form) {
+    SCOPED_TRACE("form " + std::to_string(form));
+    gltf_file f;
+    json image;
+    if (form == 0) image = {{"bufferView", f.view(png.data(), png.size())}, {"mimeType", "image/png"}};
+    if (form == 1) image = {{"uri", "data:image/png;base64," + base64(png)}};
+    if (form == 2) image = {{"uri", "checks.png"}};
+    if (form == 2) dir.write("checks.png", png);
+    f.doc["images"] = {image};
+    f.doc["textures"] = {{{"source", 0}}};
+    const int m = f.material(
+        {{"pbrMetallicRoughness",
+          {{"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}, {"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}}});
+    f.roots({f.node({{"mesh", f.mesh({unit_quad(f, m)})}})});
+    const std::string path = form == 0 ? dir.write("quad.glb", f.glb()) : dir.write("quad.gltf", f.gltf_text());
+
+    scene s;
+    load_report report;
+    ASSERT_TRUE(load(path, s, report));
+    ASSERT_EQ(s.textures.size(), 1u);
+    const texture& t = s.textures[0];
+    EXPECT_EQ(t.kind, texture_kind::image);
+    ASSERT_EQ(t.width, 2);
+    ASSERT_EQ(t.height, 2);
+    // sRGB 128 arrives linear: ((128/255 + 0.055) / 1.055)^2.4.
+    const double grey = std::pow((128 / 255.0 + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(t.texels[9], grey, 1e-6);
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_EQ(s.materials[0].texture, 0);
+    EXPECT_EQ(s.materials[0].rho, rgb(0.5));
+    EXPECT_EQ(s.materials[0].ke, rgb(0.0));
+
+    // Each quarter of the quad shows its texel: the top left red, the
+    // bottom left blue (the image's top is the quad's +y side).
+    const polygon_mesh& mesh = only_mesh(s);
+    ASSERT_EQ(mesh.uvs.size(), mesh.positions.size());
+    const std::pair<vec3, rgb> expected[] = {{{0.25, 0.75, 0}, {1, 0, 0}},
+                                             {{0.75, 0.75, 0}, {0, 1, 0}},
+                                             {{0.25, 0.25, 0}, {0, 0, 1}},
+                                             {{0.75, 0.25, 0}, rgb(grey)}};
+    for (const auto& [p, colour] : expected) {
+      const auto uv = uv_at(mesh, p);
+      ASSERT_TRUE(uv) << p.x << " " << p.y;
+      const rgb value = texture_value(t, *uv);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], colour[c], 1e-6) << p.x << " " << p.y << " channel " << c;
+    }
+    // No emitter: the same warning a bare OBJ without one gets.
+    EXPECT_TRUE(has_warning(report, path + ": no emitter")) << ::testing::PrintToString(report.warnings);
+  }
+}
+
+TEST(Gltf, EmissiveQuadGetsFactorTimesStrength) {
+  scratch_dir dir;
+  gltf_file f;
+  f.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  const int light =
+      f.material({{"name", "lamp"},
+                  {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.3, 0.4, 1}}, {"metallicFactor", 0}}},
+                  {"emissiveFactor", {1.0, 0.5, 0.25}},
+                  {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}});
+  // glTF's default material colour is white: clamped as OBJ's Kd 1 is.
+  const int white = f.material({{"name", "white"}, {"pbrMetallicRoughness", {{"metallicFactor", 0}}}});
+  const int quad_light = f.mesh({unit_quad(f, light, true, false)});
+  const int quad_white = f.mesh({unit_quad(f, white, true, false)});
+  f.roots({f.node({{"mesh", quad_light}, {"translation", {0, 0, 1}}, {"rotation", {1, 0, 0, 0}}}),
+           f.node({{"mesh", quad_white}})});
+  const std::string path = dir.write("lamp.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].name, "lamp");
+  EXPECT_EQ(s.materials[0].ke, rgb(4.0, 2.0, 1.0));
+  EXPECT_EQ(s.materials[0].rho, rgb(0.2, 0.3, 0.4));
+  EXPECT_EQ(s.materials[1].rho, rgb(max_reflectance));
+  EXPECT_TRUE(has_warning(report, "materials[1] 'white': baseColorFactor channels of 1 or more clamped to 0.99"))
+      << ::testing::PrintToString(report.warnings);
+  EXPECT_FALSE(has_warning(report, "no emitter"));
+  EXPECT_FALSE(has_warning(report, "KHR_materials_emissive_strength"));  // supported, not warned about
+  EXPECT_FALSE(has_warning(report, "metallic"));                         // metallicFactor 0
+}
+
+TEST(Gltf, ChildLandsWhereTheComposedTransformPutsIt) {
+  scratch_dir dir;
+  gltf_file f;
+  const int m = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}});
+  // A triangle tilted out of the z = 0 plane, normal along (0, -1, 1).
+  const double r = std::sqrt(0.5);
+  json prim = {
+      {"attributes",
+       {{"POSITION", f.floats({0, 0, 0, 1, 0, 0, 0, 1, 1}, "VEC3", 3)},
+        {"NORMAL", f.floats({0, float(-r), float(r), 0, float(-r), float(r), 0, float(-r), float(r)}, "VEC3", 3)}}},
+      {"material", m}};
+  const int tri = f.mesh({prim});
+  // Child: translated by (1, 0, 0) and stretched by 2 along y; parent:
+  // scaled by 2, turned 90 degrees about z, moved to (10, 0, 0).
+  const int child = f.node({{"mesh", tri}, {"translation", {1, 0, 0}}, {"scale", {1, 2, 1}}});
+  const double h = std::sqrt(0.5);
+  f.node({{"children", {child}}, {"translation", {10, 0, 0}}, {"rotation", {0, 0, h, h}}, {"scale", {2, 2, 2}}});
+  f.roots({1});
+  const std::string path = dir.write("tree.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  const polygon_mesh& mesh = only_mesh(s);
+  ASSERT_EQ(mesh.positions.size(), 3u);
+  // Corner by corner: child (x + 1, 2y, z), parent scale 2, then
+  // (x, y) -> (-y, x), then + (10, 0, 0).
+  const vec3 expected[] = {{10, 2, 0}, {10, 4, 0}, {6, 2, 2}};
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mesh.positions[i][c], expected[i][c], 1e-6) << "corner " << i;
+  // Normals go by the inverse transpose: they stay perpendicular to the
+  // transformed triangle (a plain transform would tilt them).
+  ASSERT_EQ(mesh.normals.size(), 3u);
+  const vec3 face = newell_normal(mesh, mesh.faces[0]);
+  for (const vec3& n : mesh.normals) EXPECT_NEAR(glm::dot(n, face), 1.0, 1e-6);
+
+  // The same parent as a matrix (column-major) gives the same corners.
+  f.doc["nodes"][1].erase("translation");
+  f.doc["nodes"][1].erase("rotation");
+  f.doc["nodes"][1].erase("scale");
+  f.doc["nodes"][1]["matrix"] = {0, 2, 0, 0, -2, 0, 0, 0, 0, 0, 2, 0, 10, 0, 0, 1};
+  scene s2;
+  ASSERT_TRUE(load(dir.write("tree_matrix.gltf", f.gltf_text()), s2, report));
+  const polygon_mesh& mesh2 = only_mesh(s2);
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mesh2.positions[i][c], expected[i][c], 1e-6) << "corner " << i;
+}
+
+TEST(Gltf, MirroredNodeKeepsFacesAndNormalsOutward) {
+  scratch_dir dir;
+  gltf_file f;
+  const int m = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}});
+  // A tetrahedron, faces anticlockwise seen from outside, with flat normals.
+  const vec3 v[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::vector<float> positions, normals;
+  for (const auto& face : faces) {
+    const vec3 n = glm::normalize(glm::cross(v[face[1]] - v[face[0]], v[face[2]] - v[face[0]]));
+    for (int i : face)
+      for (int c = 0; c < 3; ++c) {
+        positions.push_back(float(v[i][c]));
+        normals.push_back(float(n[c]));
+      }
+  }
+  const int tet =
+      f.mesh({{{"attributes", {{"POSITION", f.floats(positions, "VEC3", 3)}, {"NORMAL", f.floats(normals, "VEC3", 3)}}},
+               {"material", m}}});
+  f.roots({f.node({{"mesh", tet}, {"scale", {-1, 1, 1}}, {"translation", {5, 0, 0}}})});
+  const std::string path = dir.write("mirror.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  const polygon_mesh& mesh = only_mesh(s);
+  ASSERT_EQ(mesh.faces.size(), 4u);
+  vec3 centre(0.0);
+  for (const vec3& p : mesh.positions) centre += p / double(mesh.positions.size());
+  EXPECT_NEAR(centre.x, 5 - 0.25, 1e-6);
+  for (const polygon_face& face : mesh.faces) {
+    vec3 mid(0.0);
+    for (int i : face.position) mid += mesh.positions[i] / 3.0;
+    const vec3 n = newell_normal(mesh, face);
+    EXPECT_GT(glm::dot(n, mid - centre), 0.0) << "a face turned inward";
+    ASSERT_EQ(face.normal.size(), 3u);
+    for (int i : face.normal) EXPECT_NEAR(glm::dot(mesh.normals[i], n), 1.0, 1e-6);
+  }
+}
+
+TEST(Gltf, IgnoredFeaturesAreWarnedAboutOncePerKind) {
+  scratch_dir dir;
+  gltf_file f;
+  f.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_lights_punctual"};
+  f.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}}}}}}};
+  f.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+  f.doc["images"] = {{{"uri", "data:image/png;base64," + base64(png_2x2())}}};
+  f.doc["textures"] = {{{"source", 0}}};
+  // Two metallic materials with normal maps, and a line primitive.
+  const int a = f.material({{"normalTexture", {{"index", 0}}}, {"emissiveFactor", {1, 1, 1}}});
+  const int b = f.material({{"normalTexture", {{"index", 0}}}});
+  json lines = {{"attributes", {{"POSITION", f.floats({0, 0, 0, 1, 0, 0}, "VEC3", 3)}}}, {"mode", 1}};
+  const int mesh = f.mesh({unit_quad(f, a), unit_quad(f, b), lines});
+  f.roots({f.node({{"mesh", mesh}, {"camera", 0}})});
+  const std::string path = dir.write("extras.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  const std::string all = ::testing::PrintToString(report.warnings);
+  EXPECT_EQ(count_warnings(report, "metallic and roughness ignored"), 1) << all;
+  EXPECT_EQ(count_warnings(report, "normal maps ignored"), 1) << all;
+  EXPECT_EQ(count_warnings(report, "cameras ignored"), 1) << all;
+  EXPECT_EQ(count_warnings(report, "KHR_lights_punctual"), 1) << all;
+  EXPECT_EQ(count_warnings(report, "'KHR_materials_clearcoat' is not supported"), 1) << all;
+  EXPECT_EQ(count_warnings(report, "points and lines have no area"), 1) << all;
+  for (const std::string& w : report.warnings) EXPECT_EQ(w.rfind(path + ": ", 0), 0u) << w;
+  std::size_t faces = 0;
+  for (const surface& surf : s.surfaces) faces += std::get<polygon_mesh>(surf.geometry).faces.size();
+  EXPECT_EQ(faces, 4u);
+}
+
+// ---- bad files -----------------------------------------------------------
+
+// A valid one-quad file to break in one place.
+gltf_file good_quad() {
+  gltf_file f;
+  const int m = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}});
+  f.roots({f.node({{"mesh", f.mesh({unit_quad(f, m)})}})});
+  return f;
+}
+
+TEST(Gltf, MissingAndNonGltfFiles) {
+  scratch_dir dir;
+  error_of(dir.path("nothere.gltf"));
+  error_of(dir.path("nothere.glb"));
+  EXPECT_NE(error_of(dir.write("text.gltf", "this is not JSON")).find("text.gltf: "), std::string::npos);
+  error_of(dir.write("array.gltf", "[1, 2, 3]"));
+  const std::string e = error_of(dir.write("cut.gltf", R"({"asset": {"version": "2.0"}, "meshes": [)"));
+  EXPECT_NE(e.find("cut.gltf: invalid JSON: parse error at line 1"), std::string::npos) << e;
+  error_of(dir.write("noasset.gltf", R"({"meshes": []})"));
+  error_of(dir.write("empty.glb", ""));
+  // A missing external buffer.
+  gltf_file f = good_quad();
+  json d = json::parse(f.gltf_text());
+  d["buffers"][0]["uri"] = "missing.bin";
+  EXPECT_NE(error_of(dir.write("nobin.gltf", d.dump())).find("missing.bin"), std::string::npos);
+  // A base colour image that is not there, or not an image (as map_Kd).
+  for (const std::string& uri : {std::string("nothere.png"), "data:image/png;base64," + base64("not a png")}) {
+    gltf_file t;
+    t.doc["images"] = {{{"uri", uri}}};
+    t.doc["textures"] = {{{"source", 0}}};
+    const int m = t.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+    t.roots({t.node({{"mesh", t.mesh({unit_quad(t, m)})}})});
+    const std::string e = error_of(dir.write("image.gltf", t.gltf_text()));
+    EXPECT_NE(e.find("image.gltf: images[0]: cannot"), std::string::npos) << e;
+  }
+}
+
+TEST(Gltf, TruncatedGlb) {
+  scratch_dir dir;
+  const std::string glb = good_quad().glb();
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(dir.write("whole.glb", glb), s, report));
+  for (std::size_t keep : {std::size_t(10), std::size_t(30), glb.size() / 2, glb.size() - 4}) {
+    const std::string e = error_of(dir.write("cut" + std::to_string(keep) + ".glb", glb.substr(0, keep)));
+    EXPECT_NE(e.find("truncated"), std::string::npos) << e;
+  }
+}
+
+TEST(Gltf, BadAccessorsAndIndicesNameMeshPrimitiveAndAccessor) {
+  scratch_dir dir;
+  {  // POSITION names an accessor that does not exist
+    gltf_file f = good_quad();
+    f.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 99;
+    const std::string e = error_of(dir.write("accessor.gltf", f.gltf_text()));
+    EXPECT_NE(e.find("meshes[0].primitives[0].attributes.POSITION: accessor 99 does not exist"), std::string::npos)
+        << e;
+  }
+  {  // an accessor reading past its buffer view
+    gltf_file f = good_quad();
+    f.doc["accessors"][0]["count"] = 40;
+    const std::string e = error_of(dir.write("range.gltf", f.gltf_text()));
+    EXPECT_NE(e.find("meshes[0].primitives[0].attributes.POSITION (accessor 0)"), std::string::npos) << e;
+  }
+  {  // a buffer view past the end of its buffer
+    gltf_file f = good_quad();
+    f.doc["bufferViews"][0]["byteOffset"] = 1000;
+    const std::string e = error_of(dir.write("view.glb", f.glb()));
+    EXPECT_NE(e.find("bufferViews[0]"), std::string::npos) << e;
+  }
+  {  // a buffer view naming a buffer that does not exist
+    gltf_file f = good_quad();
+    f.doc["bufferViews"][1]["buffer"] = 3;
+    const std::string e = error_of(dir.write("buffer.gltf", f.gltf_text()));
+    EXPECT_NE(e.find("buffer 3 does not exist"), std::string::npos) << e;
+  }
+  {  // an index beyond the vertices
+    gltf_file f;
+    const int m = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}});
+    json prim = {{"attributes", {{"POSITION", f.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3)}}},
+                 {"indices", f.indices({0, 1, 2, 0, 2, 7})},
+                 {"material", m}};
+    f.roots({f.node({{"mesh", f.mesh({prim})}})});
+    const std::string e = error_of(dir.write("index.gltf", f.gltf_text()));
+    EXPECT_NE(e.find("meshes[0].primitives[0].indices (accessor 1): element 5 is vertex 7, out of range (4 vertices)"),
+              std::string::npos)
+        << e;
+  }
+  {  // indices naming an accessor that does not exist (tinygltf checks this one)
+    gltf_file f = good_quad();
+    f.doc["meshes"][0]["primitives"][0]["indices"] = 42;
+    error_of(dir.write("indices.gltf", f.gltf_text()));
+  }
+  {  // mesh, material and node indices out of range, a cycle of nodes
+    gltf_file f = good_quad();
+    f.doc["nodes"][0]["mesh"] = 5;
+    EXPECT_NE(error_of(dir.write("mesh.gltf", f.gltf_text())).find("mesh 5 does not exist"), std::string::npos);
+    f = good_quad();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 8;
+    EXPECT_NE(error_of(dir.write("material.gltf", f.gltf_text())).find("material 8 does not exist"), std::string::npos);
+    f = good_quad();
+    f.doc["nodes"][0]["children"] = {0};
+    EXPECT_NE(error_of(dir.write("cycle.gltf", f.gltf_text())).find("cycle"), std::string::npos);
+  }
+}
+
+TEST(Gltf, NanPositionsAndDegenerateGeometryAreErrors) {
+  scratch_dir dir;
+  gltf_file f;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  f.roots({f.node(
+      {{"mesh", f.mesh({{{"attributes", {{"POSITION", f.floats({0, 0, 0, 1, nan, 0, 0, 1, 0}, "VEC3", 3)}}}}})}})});
+  std::string e = error_of(dir.write("nan.glb", f.glb()));
+  EXPECT_NE(e.find("meshes[0].primitives[0].attributes.POSITION (accessor 0): element 1 is not a finite number"),
+            std::string::npos)
+      << e;
+  // Every triangle degenerate: nothing left to light.
+  gltf_file g;
+  g.roots({g.node(
+      {{"mesh", g.mesh({{{"attributes", {{"POSITION", g.floats({0, 0, 0, 1, 1, 1, 2, 2, 2}, "VEC3", 3)}}}}})}})});
+  e = error_of(dir.write("flat.gltf", g.gltf_text()));
+  EXPECT_NE(e.find("no surfaces left"), std::string::npos) << e;
+  // Only lines: no triangles at all.
+  gltf_file l;
+  l.roots({l.node(
+      {{"mesh", l.mesh({{{"attributes", {{"POSITION", l.floats({0, 0, 0, 1, 1, 1}, "VEC3", 3)}}}, {"mode", 1}}})}})});
+  e = error_of(dir.write("lines.gltf", l.gltf_text()));
+  EXPECT_NE(e.find("no triangles"), std::string::npos) << e;
+}
+
+// The loaded scene solves: an emissive glTF quad 1 above a diffuse one
+// sends rho x F x (pi ke) into it, F the closed form for facing squares.
+TEST(Gltf, EmissiveQuadLightsTheQuadBelow) {
+  scratch_dir dir;
+  gltf_file f;
+  const int light = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}, {"metallicFactor", 0}}},
+                                {"emissiveFactor", {1, 1, 1}}});
+  const int grey =
+      f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}, {"metallicFactor", 0}}}});
+  // The lamp turned over (180 degrees about x) to face down at z = 1.
+  f.roots({f.node({{"mesh", f.mesh({unit_quad(f, light, false, false)})},
+                   {"translation", {0, 1, 1}},
+                   {"rotation", {1, 0, 0, 0}}}),
+           f.node({{"mesh", f.mesh({unit_quad(f, grey, false, false)})}})});
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(dir.write("lit.glb", f.glb()), s, report));
+  const patch_mesh mesh = testing::mesh_of(s, 0.2);
+  radiosity_params params;
+  params.form_factors.shadow_rays = 1;
+  auto state = make_radiosity_state(s, mesh, params);
+  stop_criterion stop;
+  stop.unshot_fraction = 1e-6;
+  run_radiosity(*state, stop, [](const radiosity_state&) {});
+  const double emitted = std::numbers::pi * 1.0 * 1.0;
+  EXPECT_NEAR(state->balance.emitted.r, emitted, 1e-9);
+  EXPECT_NEAR(state->balance.received.r / emitted, 0.5 * parallel_rectangles(1, 1, 1), 0.003);
+  EXPECT_LT(balance_error(state->balance), 1e-9);
+}
+
+}  // namespace
+}  // namespace bounce
