@@ -124,6 +124,12 @@ int load_for_command(const std::string& path, const camera_options* camera_overr
   }
   print_warnings(report);
   if (camera_overrides) {
+    // A camera file is a file that may be unusable (exit 1); the options
+    // typed over it are the command line (exit 2).
+    if (std::string e; !camera_overrides->file.empty() && !load_camera_file(camera_overrides->file, s.view, e)) {
+      std::cerr << "error: --camera: " << e << "\n";
+      return exit_input_error;
+    }
     if (std::string e = apply_camera_options(*camera_overrides, s.view); !e.empty()) {
       std::cerr << "error: " << e << "\n";
       return exit_usage;
@@ -301,6 +307,9 @@ std::string check_solver_options(const CLI::App& command, solver_settings& setti
 }
 
 void add_camera_options(CLI::App& command, camera_options& o) {
+  command.add_option("--camera", o.file,
+                     "camera file ({\"camera\": {...}} as in a scene file, e.g. saved from the window's panel); "
+                     "--eye, --target, --up, --fov and --size override it");
   command.add_option("--eye", o.eye, "camera position x,y,z")->check(vec3_check);
   command.add_option("--target", o.target, "point looked at x,y,z")->check(vec3_check);
   command.add_option("--up", o.up, "up direction x,y,z")->check(vec3_check);

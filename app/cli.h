@@ -18,6 +18,7 @@ namespace bounce {
 
 // Camera overrides of every command that renders, as typed.
 struct camera_options {
+  std::string file;  // --camera: a camera file, loaded before the other overrides apply
   std::string eye, target, up, size;
   std::optional<double> fov;
 };

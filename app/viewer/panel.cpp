@@ -9,6 +9,8 @@
 
 #include <imgui.h>
 
+#include "scene/scene_io.h"
+
 namespace bounce {
 
 const std::vector<std::pair<std::string, std::string>>& shortcuts() {
@@ -153,6 +155,16 @@ panel_actions escape(panel_state& state, bool working) {
   else
     act.quit = true;
   return act;
+}
+
+std::string camera_command_line(const camera& v) {
+  char text[512];
+  // %.17g: the numbers read back exactly.
+  std::snprintf(text, sizeof text,
+                "--eye %.17g,%.17g,%.17g --target %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g --fov %.17g --size %dx%d",
+                v.eye.x, v.eye.y, v.eye.z, v.target.x, v.target.y, v.target.z, v.up.x, v.up.y, v.up.z, v.fov_y_degrees,
+                v.width, v.height);
+  return text;
 }
 
 std::string format_percent(double fraction) {
@@ -414,6 +426,33 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     if (ImGui::Button("Screenshot")) act.screenshot = true;
     ImGui::SameLine();
     ImGui::Checkbox("with panel", &state.screenshot_with_panel);
+  }
+  if (ImGui::CollapsingHeader("Camera")) {
+    // A view found here renders the same with `render` and `trace`.
+    if (ImGui::Button("Copy as options")) {
+      ImGui::SetClipboardText(camera_command_line(state.current_camera).c_str());
+      state.message = "camera copied as command-line options";
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Copy as JSON")) {
+      ImGui::SetClipboardText(camera_json(state.current_camera).c_str());
+      state.message = "camera copied as JSON (a camera file)";
+    }
+    char path[1024];
+    std::snprintf(path, sizeof path, "%s", state.camera_path.c_str());
+    ImGui::InputText("camera file", path, sizeof path);
+    state.camera_path = path;
+    if (ImGui::Button("Save camera file")) act.save_camera = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("then: bounce render SCENE --camera FILE");
+    ImGui::SameLine();
+    if (ImGui::Button("Bookmark this view")) act.add_bookmark = true;
+    for (std::size_t i = 0; i < state.bookmarks.size(); ++i) {
+      ImGui::PushID(int(i));
+      if (ImGui::SmallButton("x")) act.delete_bookmark = int(i);
+      ImGui::SameLine();
+      if (ImGui::Selectable(state.bookmarks[i].name.c_str())) act.go_to_bookmark = int(i);
+      ImGui::PopID();
+    }
   }
   if (ImGui::CollapsingHeader("Ray-traced still", ImGuiTreeNodeFlags_DefaultOpen)) {
     still_settings& st = state.still;

@@ -33,6 +33,12 @@ struct still_status {
   std::string summary;
 };
 
+// A named camera kept for a scene.
+struct camera_bookmark {
+  std::string name;
+  camera view;
+};
+
 struct panel_state {
   std::string scene_path;
   std::vector<std::string> asset_scenes;   // offered in a list
@@ -42,6 +48,9 @@ struct panel_state {
   bool screenshot_with_panel = false;
   std::string screenshot_path = "bounce-screenshot.png";
   still_settings still;
+  camera current_camera;                   // the window's camera this frame (the window sets it)
+  std::vector<camera_bookmark> bookmarks;  // of the scene shown
+  std::string camera_path = "bounce-camera.json";
   bool show_help = false;
   bool show_still = false;    // the still's window; closed by its X or Esc, opened by a new still
   bool confirm_quit = false;  // the "quit while working?" popup
@@ -60,7 +69,15 @@ struct panel_actions {
   bool compute_reference = false;  // path trace a reference of the camera for the error plot
   bool set_stop = false;           // the stopping point changed: the running solver takes it
   bool quit = false;               // close the window
+  bool save_camera = false;        // write current_camera to camera_path
+  bool add_bookmark = false;       // keep current_camera as a new bookmark
+  int go_to_bookmark = -1;         // index into bookmarks, or -1
+  int delete_bookmark = -1;        // index into bookmarks, or -1
 };
+
+// The camera as the command line's options, to paste after `bounce render`
+// or `bounce trace`: "--eye x,y,z --target x,y,z --up x,y,z --fov f --size WxH".
+std::string camera_command_line(const camera& view);
 
 // Esc, as people expect it: it closes what is open first (the help, the
 // quit question, the still's window), and quits only when nothing is;

@@ -4,7 +4,9 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "panel.h"
+#include <nlohmann/json.hpp>
+
+#include "scene/scene_io.h"
 
 namespace bounce {
 namespace {
@@ -12,6 +14,25 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::size_t max_recent = 10;
+
+fs::path bookmarks_file() {
+  const fs::path folder = config_folder();
+  return folder.empty() ? fs::path() : folder / "bookmarks.json";
+}
+
+// Files by absolute path, so that a scene opened from elsewhere finds its bookmarks.
+std::string scene_key(const std::string& source) {
+  if (source.starts_with("embedded:") || source.starts_with("generated:")) return source;
+  std::error_code ec;
+  return fs::absolute(source, ec).lexically_normal().string();
+}
+
+nlohmann::json read_all_bookmarks() {
+  std::ifstream in(bookmarks_file());
+  if (!in) return nlohmann::json::object();
+  nlohmann::json all = nlohmann::json::parse(in, nullptr, false);
+  return all.is_object() ? all : nlohmann::json::object();
+}
 
 fs::path recent_file() {
   const fs::path folder = config_folder();
@@ -67,6 +88,35 @@ std::vector<std::string> remember_scene(const std::string& source) {
   std::ofstream out(file);
   for (const std::string& r : recent) out << r << "\n";
   return recent;
+}
+
+std::vector<camera_bookmark> read_bookmarks(const std::string& scene_source) {
+  std::vector<camera_bookmark> out;
+  const nlohmann::json all = read_all_bookmarks();
+  const auto it = all.find(scene_key(scene_source));
+  if (it == all.end() || !it->is_array()) return out;
+  for (const nlohmann::json& entry : *it) {
+    if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string() || !entry.contains("camera"))
+      continue;
+    camera_bookmark b{entry["name"].get<std::string>(), {}};
+    std::string error;
+    if (parse_camera_text(nlohmann::json{{"camera", entry["camera"]}}.dump(), "bookmarks.json", b.view, error))
+      out.push_back(std::move(b));
+  }
+  return out;
+}
+
+void save_bookmarks(const std::string& scene_source, const std::vector<camera_bookmark>& bookmarks) {
+  const fs::path file = bookmarks_file();
+  if (file.empty()) return;
+  nlohmann::json all = read_all_bookmarks();
+  nlohmann::json list = nlohmann::json::array();
+  for (const camera_bookmark& b : bookmarks)
+    list.push_back({{"name", b.name}, {"camera", nlohmann::json::parse(camera_json(b.view))["camera"]}});
+  all[scene_key(scene_source)] = list;
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  std::ofstream(file) << all.dump(2) << "\n";
 }
 
 }  // namespace bounce

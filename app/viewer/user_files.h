@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "panel.h"
+
 namespace bounce {
 
 // The user's configuration folder for Bounce; empty when neither
@@ -28,5 +30,10 @@ std::vector<std::string> read_recent_scenes();
 // built-in default is not listed), saves the list, and returns it. A list
 // that cannot be saved stays in memory: it is a convenience, not data.
 std::vector<std::string> remember_scene(const std::string& source);
+
+// Camera bookmarks, per scene, in bookmarks.json in the configuration
+// folder. Entries that do not read back as cameras are skipped.
+std::vector<camera_bookmark> read_bookmarks(const std::string& scene_source);
+void save_bookmarks(const std::string& scene_source, const std::vector<camera_bookmark>& bookmarks);
 
 }  // namespace bounce

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include <glad/gl.h>
 // glad first: GLFW must not pull in a GL header of its own.
@@ -20,6 +21,7 @@
 #include "panel.h"
 #include "scene/camera_math.h"
 #include "scene/orbit.h"
+#include "scene/scene_io.h"
 #include "scripted_run.h"
 #include "solver_worker.h"
 #include "still_job.h"
@@ -77,6 +79,10 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.compute_reference |= b.compute_reference;
   a.set_stop |= b.set_stop;
   a.quit |= b.quit;
+  a.save_camera |= b.save_camera;
+  a.add_bookmark |= b.add_bookmark;
+  if (b.go_to_bookmark >= 0) a.go_to_bookmark = b.go_to_bookmark;
+  if (b.delete_bookmark >= 0) a.delete_bookmark = b.delete_bookmark;
   return a;
 }
 
@@ -207,6 +213,7 @@ void viewer_app::take_published_work(const worker_view& view) {
     if (view.source) {
       glfwSetWindowTitle(window_, window_title(view.source->source).c_str());
       panel_.recent_scenes = remember_scene(view.source->source);
+      panel_.bookmarks = read_bookmarks(view.source->source);
     }
   }
   if (view.solution && view.solution != uploaded_solution_) {
@@ -254,6 +261,11 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   const std::string setting = setting_key(panel_.solver);
   errors_.observe(view, setting_key(view.settings));
   const error_status error_shown = errors_.status(setting);
+  panel_.current_camera = camera_from_orbit(orbit_, scene_camera_);
+  if (width_ > 0 && height_ > 0) {
+    panel_.current_camera.width = width_;
+    panel_.current_camera.height = height_;
+  }
   const panel_actions act = draw_panel(panel_, view, frame_ms_, still_shown_, error_shown);
   ImGui::Render();
   if (width_ <= 0 || height_ <= 0) return act;  // a minimised window draws nothing
@@ -318,6 +330,25 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
     panel_.message = "still cancelled";
   }
   if (act.quit) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+  if (act.save_camera) {
+    std::ofstream out(panel_.camera_path);
+    out << camera_json(panel_.current_camera);
+    panel_.message = out ? "camera saved: " + std::filesystem::absolute(panel_.camera_path).string() +
+                               " (bounce render SCENE --camera FILE)"
+                         : panel_.camera_path + ": cannot write";
+  }
+  if (view.source && (act.add_bookmark || act.delete_bookmark >= 0)) {
+    if (act.add_bookmark)
+      panel_.bookmarks.push_back({"view " + std::to_string(panel_.bookmarks.size() + 1), panel_.current_camera});
+    if (act.delete_bookmark >= 0 && act.delete_bookmark < int(panel_.bookmarks.size()))
+      panel_.bookmarks.erase(panel_.bookmarks.begin() + act.delete_bookmark);
+    save_bookmarks(view.source->source, panel_.bookmarks);
+  }
+  if (act.go_to_bookmark >= 0 && act.go_to_bookmark < int(panel_.bookmarks.size())) {
+    const camera& b = panel_.bookmarks[std::size_t(act.go_to_bookmark)].view;
+    orbit_ = orbit_from_camera(b);
+    scene_camera_.fov_y_degrees = b.fov_y_degrees;
+  }
   if ((act.save_still_png || act.save_still_pfm) && still_.result()) {
     const image& picture = still_.result()->picture;
     const std::string& path = act.save_still_png ? panel_.still.png_path : panel_.still.pfm_path;

@@ -27,12 +27,21 @@ struct load_report {
 inline constexpr std::string_view generated_prefix = "generated:";
 
 // Loads a .json scene, a bare .obj or a glTF 2.0 .gltf/.glb (their camera
-// fitted to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills report.error with a message
-// naming the file and the line or object, and leaves `out` untouched.
+// fitted to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills
+// report.error with a message naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
 
 // Reads a file's bytes, from disk or from the embedded files.
 std::optional<std::string> read_file(const std::string& path);
+
+// Camera files hold the scene format's camera object: {"camera": {"eye":
+// ..., "target": ..., "up": ..., "fov": ..., "size": [w, h]}}; keys left
+// out keep `cam`'s values. Errors name the file (`where`) and the key.
+bool load_camera_file(const std::string& path, camera& cam, std::string& error);
+bool parse_camera_text(const std::string& text, const std::string& where, camera& cam, std::string& error);
+
+// `cam` as a camera file (every key written; numbers round-trip exactly).
+std::string camera_json(const camera& cam);
 
 // A camera that frames the scene's bounding box, looking horizontally from
 // the side that shows the most front-facing area (y is up).

@@ -775,4 +775,30 @@ TEST(Cli, LibraryWarningsBecomeBouncesOwn) {
   EXPECT_NE(r.err.find("non-manifold face(s) kept with vertices of their own"), std::string::npos) << r.err;
 }
 
+// A camera file (as the window's panel saves it) gives the same picture as
+// the same camera typed as options; options typed over it win.
+TEST(Cli, CameraFileRendersTheSameViewAsOptions) {
+  scratch_dir dir;
+  const std::string file = dir.write("cam.json", R"({"camera": {"eye": [278, 200, -700], "target": [300, 250, 300],
+    "up": [0, 1, 0], "fov": 35, "size": [40, 30]}})");
+  const std::string fast = " --quiet --max-edge 150 --until 0.05 --pfm ";
+  ASSERT_EQ(run("render --camera " + file + fast + dir.path("a.pfm") + " --out " + dir.path("a.png")).code, 0);
+  ASSERT_EQ(run("render --eye 278,200,-700 --target 300,250,300 --up 0,1,0 --fov 35 --size 40x30" + fast +
+                dir.path("b.pfm") + " --out " + dir.path("b.png"))
+                .code,
+            0);
+  EXPECT_EQ(slurp(dir.path("a.pfm")), slurp(dir.path("b.pfm")));
+  ASSERT_EQ(
+      run("render --camera " + file + " --size 20x10" + fast + dir.path("c.pfm") + " --out " + dir.path("c.png")).code,
+      0);
+  EXPECT_EQ(head(dir.path("c.pfm"), 9), "PF\n20 10\n");
+  // A bad camera file is a file that cannot be used: exit 1, named.
+  run_result r = run("render --camera " + dir.write("bad.json", R"({"camera": {"eye": [0, 0], "target": [0, 0, 1]}})"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("bad.json: camera.eye"), std::string::npos) << r.err;
+  r = run("trace --camera " + dir.path("missing.json"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("missing.json: cannot read file"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -3,6 +3,7 @@
 // statistics follow the solver that runs, and the panel laid out headless
 // (ImGui needs no renderer to lay out) fits its labels.
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -261,6 +262,56 @@ TEST(Panel, RecentScenesAreKeptMostRecentFirst) {
   EXPECT_EQ(recent.size(), 10u);
   EXPECT_EQ(recent.front(), "/scenes/14.json");
   EXPECT_TRUE(std::filesystem::exists(home / "bounce" / "recent.txt"));
+  ::unsetenv("XDG_CONFIG_HOME");
+  std::filesystem::remove_all(home);
+}
+
+// The camera the panel copies reads back exactly, as options and as a file.
+TEST(Panel, CopiedCamerasReadBackExactly) {
+  camera cam;
+  cam.eye = {278.123456789, 273.0, -800.5};
+  cam.target = {0.1, 1.0 / 3.0, 2e-7};
+  cam.up = {0.0, 1.0, 1e-3};
+  cam.fov_y_degrees = 39.3077;
+  cam.width = 1200;
+  cam.height = 760;
+  camera back;
+  const std::string options = camera_command_line(cam);
+  ASSERT_EQ(
+      std::sscanf(options.c_str(), "--eye %lf,%lf,%lf --target %lf,%lf,%lf --up %lf,%lf,%lf --fov %lf --size %dx%d",
+                  &back.eye.x, &back.eye.y, &back.eye.z, &back.target.x, &back.target.y, &back.target.z, &back.up.x,
+                  &back.up.y, &back.up.z, &back.fov_y_degrees, &back.width, &back.height),
+      12)
+      << options;
+  auto same = [](const camera& a, const camera& b) {
+    return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_y_degrees == b.fov_y_degrees &&
+           a.width == b.width && a.height == b.height;
+  };
+  EXPECT_TRUE(same(back, cam)) << options;
+  camera from_file;
+  std::string error;
+  ASSERT_TRUE(parse_camera_text(camera_json(cam), "copied", from_file, error)) << error;
+  EXPECT_TRUE(same(from_file, cam)) << camera_json(cam);
+}
+
+TEST(Panel, BookmarksAreKeptPerScene) {
+  const std::filesystem::path home = std::filesystem::temp_directory_path() / "bounce_tests" / "bookmark_config";
+  std::filesystem::remove_all(home);
+  ::setenv("XDG_CONFIG_HOME", home.c_str(), 1);
+  camera a, b;
+  a.eye = {1, 2, 3};
+  b.eye = {4, 5, 6};
+  save_bookmarks("/scenes/room.json", {{"view 1", a}, {"door", b}});
+  save_bookmarks("generated:interior-10k", {{"view 1", b}});
+  const std::vector<camera_bookmark> room = read_bookmarks("/scenes/room.json");
+  ASSERT_EQ(room.size(), 2u);
+  EXPECT_EQ(room[1].name, "door");
+  EXPECT_EQ(room[1].view.eye, b.eye);
+  EXPECT_EQ(read_bookmarks("generated:interior-10k").size(), 1u);
+  EXPECT_TRUE(read_bookmarks("/scenes/other.json").empty());
+  save_bookmarks("/scenes/room.json", {});
+  EXPECT_TRUE(read_bookmarks("/scenes/room.json").empty());
+  EXPECT_EQ(read_bookmarks("generated:interior-10k").size(), 1u);
   ::unsetenv("XDG_CONFIG_HOME");
   std::filesystem::remove_all(home);
 }
