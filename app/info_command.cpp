@@ -46,6 +46,7 @@ int run_info(const std::string& path, bool as_json, double max_edge) {
         {"emitting_materials", sum.emitting_materials},
         {"emitting_surfaces", sum.emitting_surfaces},
         {"point_lights", sum.point_lights},
+        {"sky", sum.sky},
         {"bounds",
          {{"min", {sum.bounds.min.x, sum.bounds.min.y, sum.bounds.min.z}},
           {"max", {sum.bounds.max.x, sum.bounds.max.y, sum.bounds.max.z}}}},
@@ -68,7 +69,8 @@ int run_info(const std::string& path, bool as_json, double max_edge) {
             << "triangles:  " << sum.triangles << " (curved surfaces tessellated at max edge " << sum.max_edge << ")\n"
             << "materials:  " << sum.materials << " (" << sum.emitting_materials << " emitting), textures "
             << sum.textures << "\n"
-            << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)\n"
+            << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)"
+            << (sum.sky ? ", a sky" : "") << "\n"
             << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
             << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
             << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";

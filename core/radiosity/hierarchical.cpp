@@ -600,7 +600,7 @@ void build_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
     const glm::ivec3 t = mesh.elements[e];
     solver.rho[e] = (mesh.vertex_rho[t[0]] + mesh.vertex_rho[t[1]] + mesh.vertex_rho[t[2]]) / 3.0;
     solver.emission[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
-    if (!s.lights.empty()) {
+    if (has_lights_beyond_surfaces(s)) {
       const cluster_node& leaf = solver.tree.nodes[solver.tree.leaf_of_element[e]];
       solver.lamp[e] = solver.rho[e] * point_light_irradiance(s, solver.context, leaf.centroid, leaf.normal, rays);
     }

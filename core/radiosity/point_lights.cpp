@@ -2,14 +2,40 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
+#include <numbers>
 
 #include "base/parallel.h"
+#include "scene/sky.h"
 
 namespace bounce {
 
+namespace {
+
+// Stratified, cosine-weighted shadow rays to the sky: pi times their mean
+// radiance is the irradiance, so an unoccluded uniform sky gives pi L exactly.
+constexpr int sky_rays = 64;
+
+rgb sky_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
+                   std::uint64_t& rays) {
+  // Beyond the scene's bounds from any point inside them.
+  const double far = 4.0 * std::max(context.mesh->scene_diagonal, 1e-12);
+  const std::uint64_t seed =
+      std::hash<double>()(p.x) ^ (std::hash<double>()(p.y) << 1) ^ (std::hash<double>()(p.z) << 2);
+  rgb sum(0.0);
+  for (int k = 0; k < sky_rays; ++k) {
+    const vec3 dir = stratified_cosine_direction(n, k, sky_rays, seed);
+    if (visible(context, p, n, p + far * dir, vec3(0.0))) sum += sky_radiance(s.sky, dir);
+  }
+  rays += sky_rays;
+  return sum * (std::numbers::pi / sky_rays);
+}
+
+}  // namespace
+
 rgb point_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
                            std::uint64_t& rays) {
-  rgb irradiance(0.0);
+  rgb irradiance = s.sky.on() ? sky_irradiance(s, context, p, n, rays) : rgb(0.0);
   for (const point_light& light : s.lights) {
     const vec3 to_light = light.position - p;
     const double r2 = glm::dot(to_light, to_light);

@@ -1,5 +1,6 @@
-// Direct light from point lights at every vertex, with shadow rays: what
-// both solvers take as the lights' contribution (B = rho * I cos / r^2).
+// Direct light that does not come from the surfaces, with shadow rays:
+// point lights (B = rho * I cos / r^2) and the sky (64 stratified,
+// cosine-weighted rays to it). What all solvers take as its contribution.
 #pragma once
 
 #include <cstdint>
@@ -10,12 +11,12 @@
 
 namespace bounce {
 
-// Irradiance the point lights give a point facing `n` (shadow rays
-// included); counts the rays cast in `rays`.
+// Irradiance the point lights and the sky give a point facing `n` (shadow
+// rays included); counts the rays cast in `rays`.
 rgb point_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
                            std::uint64_t& rays);
 
-// Radiosity each vertex reflects of the point lights' direct light, for the
+// Radiosity each vertex reflects of that direct light, for the
 // vertices from `first` on (those before are left 0: adaptive refinement
 // asks for its new vertices only). Adds the shadow rays cast to `rays`.
 std::vector<rgb> point_light_radiosity(const scene& s, const patch_mesh& mesh, const form_factor_context& context,

@@ -187,7 +187,7 @@ void restart_radiosity(radiosity_state& state) {
     state.balance.emitted += state.unshot[e] * mesh.element_areas[e];
   }
   state.unshot_emission = state.unshot;
-  state.lights_shot = state.source->lights.empty();
+  state.lights_shot = !has_lights_beyond_surfaces(*state.source);
   update_fraction(state);
   if (!state.lights_shot) state.stats.unshot_fraction = 1.0;  // the lights' power is still to come
 }
@@ -270,7 +270,7 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
     }
   }
   std::vector<rgb> lights;
-  if (!state.source->lights.empty() && state.lights_shot) {
+  if (has_lights_beyond_surfaces(*state.source) && state.lights_shot) {
     std::uint64_t rays = 0;
     lights = point_light_radiosity(*state.source, mesh, context, rays, old_vertices);
     state.stats.rays += rays;

@@ -122,6 +122,17 @@ struct point_light {
   rgb intensity{0.0};
 };
 
+// An environment emitter at infinity around the whole scene: radiance
+// `horizon` at and below the horizon, blending linearly in the cosine to
+// `zenith` straight up (along `up`). Equal colours make a uniform sky.
+// It lights an open scene; rays that leave the scene see it (sky.h).
+struct sky_light {
+  rgb zenith{0.0};
+  rgb horizon{0.0};
+  vec3 up{0.0, 1.0, 0.0};
+  bool on() const { return zenith != rgb(0.0) || horizon != rgb(0.0); }
+};
+
 struct scene {
   std::string source;  // file it came from, for messages
   std::vector<material> materials;
@@ -129,7 +140,13 @@ struct scene {
   std::vector<surface> surfaces;
   std::vector<point_light> lights;
   camera view;
-  rgb background{0.0};  // radiance of rays that leave the scene
+  rgb background{0.0};  // radiance of rays that leave the scene, where there is no sky
+  sky_light sky;        // off unless the scene has one (or a bare model file has no emitter)
 };
+
+// Light that does not come from the surfaces: point lights or a sky.
+inline bool has_lights_beyond_surfaces(const scene& s) {
+  return !s.lights.empty() || s.sky.on();
+}
 
 }  // namespace bounce

@@ -26,6 +26,7 @@ std::string summarize_scene(const scene& s, double max_edge, scene_summary& out)
   out.materials = s.materials.size();
   out.textures = s.textures.size();
   out.point_lights = s.lights.size();
+  out.sky = s.sky.on();
   out.bounds = scene_bounds(s);
 
   auto emits = [&](int m) { return glm::any(glm::greaterThan(s.materials[m].ke, rgb(0.0))); };

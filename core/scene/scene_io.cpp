@@ -360,7 +360,7 @@ struct scene_builder {
   }
 
   void read(const json& doc) {
-    r.only_keys(doc, "scene", {"camera", "background", "textures", "materials", "surfaces", "lights"});
+    r.only_keys(doc, "scene", {"camera", "background", "sky", "textures", "materials", "surfaces", "lights"});
     std::map<std::string, int> texture_by_name;
     if (doc.contains("textures")) {
       if (!doc["textures"].is_object()) r.fail("textures", "must be an object of name: texture");
@@ -392,6 +392,23 @@ struct scene_builder {
       }
     }
     if (doc.contains("background")) s.background = r.vec<3>(doc["background"], "background");
+    if (doc.contains("sky")) {
+      // {"radiance": L} (uniform) or {"zenith": Lz, "horizon": Lh}, with an optional "up".
+      const json& k = doc["sky"];
+      r.only_keys(k, "sky", {"radiance", "zenith", "horizon", "up"});
+      const bool uniform = k.contains("radiance");
+      if (uniform == (k.contains("zenith") || k.contains("horizon")))
+        r.fail("sky", "needs either 'radiance' (uniform) or 'zenith' and 'horizon' (a gradient)");
+      if (uniform) {
+        s.sky.zenith = s.sky.horizon = r.vec<3>(k["radiance"], "sky.radiance");
+      } else {
+        if (!k.contains("zenith") || !k.contains("horizon"))
+          r.fail("sky", "a gradient needs both 'zenith' and 'horizon'");
+        s.sky.zenith = r.vec<3>(k["zenith"], "sky.zenith");
+        s.sky.horizon = r.vec<3>(k["horizon"], "sky.horizon");
+      }
+      if (k.contains("up")) s.sky.up = r.vec<3>(k["up"], "sky.up");
+    }
     if (doc.contains("camera"))
       read_camera(r, doc["camera"], s.view);
     else
@@ -558,6 +575,15 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     drop_degenerate_faces(s, report);
     if (s.surfaces.empty()) throw load_error(path + ": no surfaces left after dropping degenerate faces");
     if (std::string problem = validate_scene(s); !problem.empty()) throw load_error(path + ": " + problem);
+    const bool model_file =
+        ends_with_icase(path, ".obj") || ends_with_icase(path, ".gltf") || ends_with_icase(path, ".glb");
+    if (model_file && !has_light_source(s)) {
+      // Most models come without lights: open them as a viewer would, under a white sky.
+      s.sky.zenith = s.sky.horizon = rgb(1.0);
+      report.warnings.push_back(path +
+                                ": no emitter: lit by a uniform white sky of radiance 1 (a JSON scene with "
+                                "\"sky\" or an emitter chooses the light)");
+    }
     if (!has_light_source(s))
       report.warnings.push_back(path +
                                 ": no emitter: no surface has a material with ke > 0 and there is no "

@@ -170,6 +170,9 @@ std::string validate_scene(const scene& s) {
   }
   if (!finite(s.background) || glm::any(glm::lessThan(s.background, vec3(0.0))))
     return "background must be finite and >= 0";
+  for (const rgb& c : {s.sky.zenith, s.sky.horizon})
+    if (!finite(c) || glm::any(glm::lessThan(c, vec3(0.0)))) return "sky: radiance must be finite and >= 0";
+  if (!in_range(s.sky.up) || !(glm::length(s.sky.up) > 0.0)) return "sky.up must be a finite, non-zero direction";
   for (const texture& t : s.textures) {
     // A texture scales rho, so its values stay in [0, 1] like a reflectance.
     auto unit = [](const rgb& c) {
@@ -184,6 +187,7 @@ std::string validate_scene(const scene& s) {
 }
 
 bool has_light_source(const scene& s) {
+  if (s.sky.on()) return true;
   for (const point_light& l : s.lights)
     if (glm::any(glm::greaterThan(l.intensity, vec3(0.0)))) return true;
   return has_emitting_surface(s);

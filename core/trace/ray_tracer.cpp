@@ -11,6 +11,8 @@
 #include "image/image_metrics.h"
 #include "image/tonemap.h"
 #include "scene/camera_math.h"
+#include "scene/scene_io.h"
+#include "scene/sky.h"
 #include "scene/texture.h"
 #include "trace/optics.h"
 
@@ -97,6 +99,8 @@ class tracer {
   tracer(const scene& s, const camera& view, const ray_scene& rays, const radiosity_field* field, const trace_params& p)
       : s_(s), view_(view), rays_(rays), field_(field), p_(p), offset_(rays.surface_offset()) {
     for (const texture& tex : s.textures) texture_means_.push_back(texture_mean(tex));
+    const bounds3 b = scene_bounds(s);
+    scene_diagonal_ = std::max(glm::length(b.max - b.min), 1e-12);
   }
 
   rgb pixel(int x, int y, int samples, std::uint64_t pass, counters& c) const {
@@ -184,6 +188,20 @@ class tracer {
       irradiance += e;
       highlight += phong(sp, l, to_viewer) * e;
     }
+    if (s_.sky.on() && mis_lobe_probability == 0.0 && samples > 0) {
+      // Whitted's sky: `samples` stratified, cosine-weighted shadow rays
+      // (the path tracer finds the sky with its bounces instead).
+      const double far = 4.0 * scene_diagonal_;
+      const std::uint64_t seed = rng.next_bits();
+      rgb sum(0.0);
+      for (int k = 0; k < samples; ++k) {
+        const vec3 l = stratified_cosine_direction(sp.n, k, samples, seed);
+        if (glm::dot(sp.n_face, l) <= 0.0) continue;
+        ++c.shadow;
+        if (!rays_.occluded(origin, origin + far * l)) sum += sky_radiance(s_.sky, l);
+      }
+      irradiance += sum * (pi / samples);
+    }
     if (samples <= 0 || rays_.emitter_area() <= 0.0) return;
     std::vector<vec2> points;
     stratified_points(samples, rng, points);
@@ -208,7 +226,7 @@ class tracer {
 
   rgb whitted(const vec3& origin, const vec3& d, int depth, const rgb& weight, random_stream& rng, counters& c) const {
     const auto hit = rays_.intersect(origin, d);
-    if (!hit) return s_.background;
+    if (!hit) return escaped_radiance(s_, d);
     const surface_point sp = describe(*hit, d);
     rgb radiance = sp.front ? sp.mat->ke : rgb(0.0);
 
@@ -257,7 +275,9 @@ class tracer {
     for (int bounce = 0;; ++bounce) {
       const auto hit = rays_.intersect(origin, d);
       if (!hit) {
-        radiance += throughput * s_.background;
+        // The sky is found by the bounces' own cosine sampling, which is
+        // importance sampling for a diffuse surface under a smooth sky.
+        radiance += throughput * escaped_radiance(s_, d);
         break;
       }
       const surface_point sp = describe(*hit, d);
@@ -316,6 +336,7 @@ class tracer {
   const radiosity_field* field_;
   trace_params p_;
   double offset_;
+  double scene_diagonal_ = 1.0;     // shadow rays to the sky end this far beyond any point
   std::vector<rgb> texture_means_;  // what the radiosity pass multiplied rho by
 };
 
