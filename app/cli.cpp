@@ -415,6 +415,16 @@ int run_cli(int argc, char** argv) {
   view->add_flag("--error-plot", view_extra.error_plot,
                  "path trace a 64x64 reference of the camera at the start and plot the error against it");
   view->add_flag("--exit", view_extra.exit_after, "with --frames: quit after the scripted frames")->needs(view_frames);
+  CLI::Option* view_shots = view->add_option("--screenshots", view_extra.screenshots_dir,
+                                             "with --frames: save the view (without the panel) at frame 1 and every "
+                                             "--screenshot-every frames into DIR")
+                                ->check(CLI::ExistingDirectory)
+                                ->needs(view_frames);
+  view->add_option("--screenshot-every", view_extra.screenshot_every, "with --screenshots: frames between screenshots")
+      ->check(CLI::Range(1, 1 << 30))
+      ->needs(view_shots);
+  view->add_flag("--no-refine-at-rest{false}", view_extra.refine_at_rest,
+                 "keep the live Gouraud view while the camera rests (the panel's \"refine at rest\" off)");
   view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");
   view->add_option("--msaa", view_extra.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")
       ->check(CLI::Range(0, 16));

@@ -420,6 +420,13 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::Combo("colours", &colours, "radiance\0false colour: unshot power\0false colour: element size\0");
     state.display.colours = static_cast<gl::false_colour>(colours);
     ImGui::Checkbox("highlight back faces", &state.display.highlight_back_faces);
+    ImGui::Checkbox("refine at rest", &state.refine_at_rest);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("when the camera rests, trace passes of the still in the background and show their mean");
+    if (state.refined_passes > 0) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("%d passes", state.refined_passes);
+    }
     if (ImGui::Button("Frame scene")) act.frame_scene = true;
     ImGui::SameLine();
     if (ImGui::Button("Scene camera")) act.reset_camera = true;

@@ -52,9 +52,11 @@ struct panel_state {
   std::vector<camera_bookmark> bookmarks;  // of the scene shown
   std::string camera_path = "bounce-camera.json";
   bool show_help = false;
-  bool show_still = false;    // the still's window; closed by its X or Esc, opened by a new still
-  bool confirm_quit = false;  // the "quit while working?" popup
-  std::string message;        // last action's result, e.g. where a screenshot went
+  bool show_still = false;     // the still's window; closed by its X or Esc, opened by a new still
+  bool confirm_quit = false;   // the "quit while working?" popup
+  std::string message;         // last action's result, e.g. where a screenshot went
+  bool refine_at_rest = true;  // refine the view towards the still while the camera rests
+  int refined_passes = 0;      // passes of that refinement shown now (the window sets it)
 };
 
 struct panel_actions {

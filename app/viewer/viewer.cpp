@@ -19,6 +19,8 @@
 #include "input.h"
 #include "mesh_renderer.h"
 #include "panel.h"
+#include "picture_quad.h"
+#include "rest_refiner.h"
 #include "scene/camera_math.h"
 #include "scene/orbit.h"
 #include "scene/scene_io.h"
@@ -34,6 +36,13 @@ namespace {
 using clock_type = std::chrono::steady_clock;
 
 const char* const tracing_message = "tracing a still...";
+
+// How long the camera must rest before the view refines towards the still.
+constexpr double rest_seconds = 0.4;
+
+bool same_view(const orbit_state& a, const orbit_state& b) {
+  return a.target == b.target && a.distance == b.distance && a.yaw == b.yaw && a.pitch == b.pitch;
+}
 
 double milliseconds_since(clock_type::time_point start) {
   return 1000.0 * std::chrono::duration<double>(clock_type::now() - start).count();
@@ -107,6 +116,9 @@ class viewer_app {
   // panel as asked. Returns the panel's actions.
   panel_actions draw(const worker_view& view, int frame, panel_actions& keys);
   void carry_out(const panel_actions& act, const worker_view& view);
+  // Refinement at rest: starts it when the camera has rested, drops it when
+  // anything the picture depends on changes, uploads new passes.
+  void refine_at_rest(const worker_view& view);
   // The shown scene's bounds, found once per scene: a scan of every
   // vertex, too slow to repeat every frame on a large scene.
   const bounds3& bounds(const worker_view& view) {
@@ -140,12 +152,24 @@ class viewer_app {
   double frame_ms_ = 0.0;
   int width_ = 0, height_ = 0;  // framebuffer, this frame
 
-  still_job still_;  // the ray-traced still, traced on its own thread, shown as a texture
+  still_job still_;  // the ray-traced still, traced on its own thread, shown as
+                     // a texture
   still_status still_shown_;
   std::uint64_t still_uploaded_ = 0;
   double still_exposure_ = 0.0;
 
-  error_tracker errors_;  // error against time: a path-traced reference of the camera on request
+  rest_refiner refiner_;  // passes of the still's integrator while the camera rests
+  picture_quad refined_;  // their mean, drawn over the Gouraud view
+  int refined_passes_ = 0;
+  double refined_exposure_ = 0.0;
+  orbit_state rested_orbit_;
+  int rested_width_ = 0, rested_height_ = 0;
+  std::shared_ptr<const radiosity_snapshot> refined_solution_;  // what the passes trace with
+  std::shared_ptr<const scene> refined_source_;
+  clock_type::time_point last_motion_ = clock_type::now();
+
+  error_tracker errors_;  // error against time: a path-traced reference of the
+                          // camera on request
   bool reference_requested_ = false;
 
   scripted_run script_;
@@ -163,7 +187,7 @@ viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& ini
       orbit_(orbit_from_camera(initial.view)),
       script_(options) {
   std::string error;
-  if (!renderer_.init(error)) {
+  if (!renderer_.init(error) || !refined_.init(error)) {
     std::fprintf(stderr, "error: %s", error.c_str());
     code_ = exit_input_error;
   }
@@ -171,6 +195,7 @@ viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& ini
   if (options.start_paused) worker_.pause();
   panel_.scene_path = initial.source;
   panel_.solver = solver;
+  panel_.refine_at_rest = options.refine_at_rest;
   panel_.asset_scenes = find_asset_scenes();
   panel_.recent_scenes = read_recent_scenes();
   glfwSetWindowTitle(window, window_title(initial.source).c_str());
@@ -201,7 +226,8 @@ void viewer_app::take_published_work(const worker_view& view) {
     uploaded_solution_.reset();
   }
   if (view.source != shown_source_) {
-    if (shown_source_) {  // a newly opened scene brings its camera, and the old still goes
+    if (shown_source_) {  // a newly opened scene brings its camera, and the old
+                          // still goes
       scene_camera_ = view.source->view;
       orbit_ = orbit_from_camera(scene_camera_);
       still_.cancel();
@@ -222,7 +248,8 @@ void viewer_app::take_published_work(const worker_view& view) {
       renderer_.update(*view.colours, glm::vec3(view.solution->ambient));
     else
       renderer_.update(*view.solution);
-    glFinish();  // llvmpipe copies on the CPU: finish so the time is the upload's
+    glFinish();  // llvmpipe copies on the CPU: finish so the time is the
+                 // upload's
     timing_.upload(milliseconds_since(start));
     uploaded_solution_ = view.solution;
   }
@@ -280,6 +307,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (view.mesh) renderer_.draw(view_projection, glm::vec3(cam.eye), panel_.display);
+  if (refined_passes_ > 0) refined_.draw();
 
   if (script_.wants_still(frame, view.mesh != nullptr)) keys.trace_still = true;
   const bool scripted_end = script_.at_end(frame, error_shown);
@@ -293,6 +321,16 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
     std::printf("%s\n", panel_.message.c_str());
   };
   if (shoot && !panel_in_shot) screenshot();
+  if (!options_.screenshots_dir.empty() && options_.screenshot_every > 0 && frame > 0 &&
+      (frame == 1 || frame % options_.screenshot_every == 0) && frame <= options_.frames) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.png", frame);
+    std::string e;
+    if (!save_screenshot((std::filesystem::path(options_.screenshots_dir) / name).string(), width_, height_, e)) {
+      std::fprintf(stderr, "error: %s\n", e.c_str());
+      code_ = exit_input_error;
+    }
+  }
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (shoot && panel_in_shot) screenshot();
   if (scripted_end) {
@@ -304,8 +342,49 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   return act;
 }
 
+void viewer_app::refine_at_rest(const worker_view& view) {
+  const auto now = clock_type::now();
+  // Wireframe and false colour are views of the mesh, not of the light: they
+  // stay live.
+  const bool refine_wanted =
+      panel_.refine_at_rest && !panel_.display.wireframe && panel_.display.colours == gl::false_colour::none;
+  const bool moved = !same_view(orbit_, rested_orbit_) || width_ != rested_width_ || height_ != rested_height_ ||
+                     view.source != refined_source_;
+  // A new solution restarts the passes once the solver has converged (a
+  // solve still running would restart them at every step).
+  const bool new_solution = view.converged && view.solution != refined_solution_;
+  if (moved || !refine_wanted || (new_solution && refiner_.active())) {
+    refiner_.stop();
+    refined_passes_ = 0;
+    refined_.clear();
+    if (moved) last_motion_ = now;
+    rested_orbit_ = orbit_;
+    rested_width_ = width_;
+    rested_height_ = height_;
+    refined_source_ = view.source;
+    refined_solution_.reset();
+  }
+  const double rested = std::chrono::duration<double>(now - last_motion_).count();
+  if (!refiner_.active() && refine_wanted && rested >= rest_seconds && view.source && view.mesh && view.solution &&
+      view.solution->stats.shots > 0 && width_ > 0 && height_ > 0) {
+    camera cam = camera_from_orbit(orbit_, scene_camera_);
+    cam.width = width_;
+    cam.height = height_;
+    refiner_.start(view.source, cam, view.mesh, view.solution);
+    refined_solution_ = view.solution;
+  }
+  if (const auto picture = refiner_.picture();
+      picture && (picture->passes != refined_passes_ || panel_.display.exposure != refined_exposure_)) {
+    refined_.upload(picture->mean, panel_.display.exposure);
+    refined_passes_ = picture->passes;
+    refined_exposure_ = panel_.display.exposure;
+  }
+  panel_.refined_passes = refined_passes_;
+}
+
 void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
-  send_to_worker(act, panel_, worker_);  // a reload keeps the scene on the worker: no copy here
+  send_to_worker(act, panel_,
+                 worker_);  // a reload keeps the scene on the worker: no copy here
   if (act.frame_scene) orbit_frame(orbit_, bounds(view), scene_camera_.fov_y_degrees);
   if (act.reset_camera) orbit_ = orbit_from_camera(scene_camera_);
   if (act.trace_still && view.source && !still_.running()) {
@@ -383,12 +462,14 @@ int viewer_app::run() {
     // Input: ImGui first; the view gets what the panel does not want.
     panel_actions keys = handle_input(window_, input_, pointer_, orbit_, scene_camera_.fov_y_degrees, view->running,
                                       still_.running(), dt, panel_);
-    if (!input_.dropped.empty()) {  // a file dropped on the window opens like the panel's Open
+    if (!input_.dropped.empty()) {  // a file dropped on the window opens like
+                                    // the panel's Open
       panel_.scene_path = input_.dropped.back();
       input_.dropped.clear();
       keys.open_scene = true;
     }
     glfwGetFramebufferSize(window_, &width_, &height_);
+    refine_at_rest(*view);
     const panel_actions act = draw(*view, frame, keys);
     glfwSwapBuffers(window_);
     if (uploaded_mesh_ && timing_.first_mesh_ms < 0.0) timing_.first_mesh_ms = milliseconds_since(started_);

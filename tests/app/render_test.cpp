@@ -560,5 +560,56 @@ TEST(Window, TitleNamesTheSceneAndItJoinsTheRecentList) {
   EXPECT_EQ(first, std::filesystem::path(scene).lexically_normal().string());
 }
 
+// Mean absolute difference of two 8-bit pictures of one size, over 10 x 10
+// blocks (the blocks' means compared, so that sample noise averages out).
+double block_difference(const std::string& a_path, const std::string& b_path) {
+  int w = 0, h = 0, bw = 0, bh = 0;
+  std::vector<unsigned char> a, b;
+  std::string error;
+  EXPECT_TRUE(read_png_rgb8(a_path, w, h, a, error)) << error;
+  EXPECT_TRUE(read_png_rgb8(b_path, bw, bh, b, error)) << error;
+  if (w != bw || h != bh || w < 10 || h < 10) return INFINITY;
+  double sum = 0.0;
+  int count = 0;
+  for (int by = 0; by + 10 <= h; by += 10)
+    for (int bx = 0; bx + 10 <= w; bx += 10) {
+      double da = 0.0, db = 0.0;
+      for (int y = by; y < by + 10; ++y)
+        for (int x = bx; x < bx + 10; ++x)
+          for (int c = 0; c < 3; ++c) {
+            da += a[(std::size_t(y) * w + x) * 3 + c];
+            db += b[(std::size_t(y) * w + x) * 3 + c];
+          }
+      sum += std::abs(da - db) / 300.0;
+      ++count;
+    }
+  return sum / count;
+}
+
+// At rest, the window refines its picture towards the ray-traced still:
+// the error of what it shows against an independent still of the same
+// camera (`bounce trace`) ends far below the live Gouraud view's.
+TEST(Window, TheViewAtRestConvergesTowardsTheStill) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  scratch_dir dir;
+  // --size 96x96: the window opens at 900 x 900 (its smallest long side) on the scene camera.
+  ASSERT_EQ(run("trace --quiet --size 900x900 --spp 4 --out " + dir.path("still.png")), 0);
+  double errors[2] = {0.0, 0.0};
+  for (const bool refine : {false, true}) {
+    const std::string shots = dir.path(refine ? "refined" : "live");
+    std::filesystem::create_directories(shots);
+    const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
+                                " view --size 96x96 --frames 120 --screenshots " + shots +
+                                " --screenshot-every 120 --exit" + (refine ? "" : " --no-refine-at-rest") + " >" +
+                                dir.path("out.txt") + " 2>&1";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+    errors[refine] = block_difference(shots + "/frame_00120.png", dir.path("still.png"));
+  }
+  EXPECT_GT(errors[0], 0.15);  // the live view differs from the still (measured: 0.29 of 255)
+  EXPECT_LT(errors[1], 0.5 * errors[0]) << "live " << errors[0] << ", refined " << errors[1];
+}
+
 }  // namespace
 }  // namespace bounce
