@@ -399,10 +399,7 @@ struct gltf_reader {
       if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
         warn_once("alpha",
                   who + ": alphaMode " + g.alphaMode + " ignored (and in every other material): surfaces are opaque");
-      if (g.doubleSided)
-        warn_once("double sided", who +
-                                      ": doubleSided ignored (and in every other material): faces reflect and emit "
-                                      "on the side from which their corners run anticlockwise only");
+      out.two_sided = g.doubleSided;
     }
     materials.push_back(out);
     material_of[{index, textured}] = int(materials.size()) - 1;

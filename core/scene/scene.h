@@ -46,6 +46,7 @@ struct material {
   rgb specular{0.0};       // Phong highlight colour
   double shininess = 0.0;  // Phong exponent
   int texture = -1;        // index into scene::textures, or -1
+  bool two_sided = false;  // both sides receive, reflect and emit (two_sided.h)
 };
 
 // A polygon mesh as given: faces keep their vertex count (quads stay quads).
@@ -105,6 +106,10 @@ struct surface {
   std::string name;    // for messages: object name or "surfaces[3]"
   std::string source;  // file it was read from, for messages
   shape geometry;
+  // Two-sided materials: the back of surface `back_of` (its faces with a
+  // two-sided material, turned over), and its partner's index on the front.
+  int back_of = -1;
+  int back_side = -1;
 };
 
 struct camera {

@@ -19,6 +19,7 @@
 #include "scene/procedural.h"
 #include "scene/scene_validate.h"
 #include "scene/tessellate.h"
+#include "scene/two_sided.h"
 
 namespace bounce {
 namespace {
@@ -200,7 +201,7 @@ texture read_texture(const json_reader& r, const std::string& name, const json& 
 material read_material(const json_reader& r, const std::string& name, const json& j,
                        const std::map<std::string, int>& texture_by_name) {
   const std::string where = "materials." + name;
-  r.only_keys(j, where, {"rho", "ke", "kr", "kt", "ior", "fresnel", "specular", "shininess", "texture"});
+  r.only_keys(j, where, {"rho", "ke", "kr", "kt", "ior", "fresnel", "specular", "shininess", "texture", "two_sided"});
   material m;
   m.name = name;
   if (j.contains("rho")) m.rho = r.vec<3>(j["rho"], where + ".rho");
@@ -211,6 +212,7 @@ material read_material(const json_reader& r, const std::string& name, const json
   if (j.contains("fresnel")) m.fresnel = r.boolean(j["fresnel"], where + ".fresnel");
   if (j.contains("specular")) m.specular = r.vec<3>(j["specular"], where + ".specular");
   if (j.contains("shininess")) m.shininess = r.number(j["shininess"], where + ".shininess");
+  if (j.contains("two_sided")) m.two_sided = r.boolean(j["two_sided"], where + ".two_sided");
   if (j.contains("texture")) {
     std::string t = r.string(j["texture"], where + ".texture");
     auto it = texture_by_name.find(t);
@@ -573,6 +575,7 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
       throw load_error(path + ": unknown scene format (expected .json, .obj, .gltf, .glb or generated:NAME)");
     }
     drop_degenerate_faces(s, report);
+    for (std::string& w : add_back_sides(s)) report.warnings.push_back(path + ": " + w);
     if (s.surfaces.empty()) throw load_error(path + ": no surfaces left after dropping degenerate faces");
     if (std::string problem = validate_scene(s); !problem.empty()) throw load_error(path + ": " + problem);
     const bool model_file =

@@ -123,10 +123,19 @@ class tracer {
   surface_point describe(const ray_hit& hit, const vec3& d) const {
     surface_point sp;
     sp.hit = hit;
+    // A two-sided surface and its back lie on each other, and either may be
+    // the hit: the one that faces the ray is the side seen.
+    if (const surface& surf = s_.surfaces[std::size_t(hit.surface)];
+        glm::dot(d, hit.face_normal) >= 0.0 && s_.materials[std::size_t(hit.material)].two_sided &&
+        (surf.back_side >= 0 || surf.back_of >= 0)) {
+      sp.hit.surface = surf.back_side >= 0 ? surf.back_side : surf.back_of;
+      sp.hit.normal = -hit.normal;
+      sp.hit.face_normal = -hit.face_normal;
+    }
     sp.mat = &s_.materials[hit.material];
-    sp.front = glm::dot(d, hit.face_normal) < 0.0;
-    sp.n_face = sp.front ? hit.face_normal : -hit.face_normal;
-    sp.n = sp.front ? hit.normal : -hit.normal;
+    sp.front = glm::dot(d, sp.hit.face_normal) < 0.0;
+    sp.n_face = sp.front ? sp.hit.face_normal : -sp.hit.face_normal;
+    sp.n = sp.front ? sp.hit.normal : -sp.hit.normal;
     if (sp.front) {
       sp.rho = sp.mat->rho;
       if (sp.mat->texture >= 0) {
@@ -243,7 +252,7 @@ class tracer {
       }
       if (diffuse) {
         if (solution) {
-          const diffuse_radiosity b = field_->at(hit->surface, hit->point);
+          const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point);
           const rgb reflected = p_.diffuse == diffuse_source::radiosity ? b.reflected : b.indirect;
           radiance += reflected * sp.texture_detail / pi;
         } else {
@@ -285,7 +294,7 @@ class tracer {
         // Emitters that next-event estimation samples share the diffuse
         // bounce's share with it (MIS); the rest count in full.
         double weight = 1.0;
-        if (diffuse_pdf > 0.0 && rays_.is_sampled_emitter(hit->surface)) {
+        if (diffuse_pdf > 0.0 && rays_.is_sampled_emitter(sp.hit.surface)) {
           const double cos_e = -glm::dot(d, hit->face_normal);
           weight = power_heuristic(diffuse_pdf, hit->t * hit->t / (cos_e * rays_.emitter_area()));
         }
