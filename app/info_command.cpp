@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "scene/scene_info.h"
+#include "trace/back_faces.h"
 
 namespace bounce {
 namespace {
@@ -28,8 +29,13 @@ int run_info(const std::string& path, bool as_json, double max_edge) {
     std::cerr << "error: " << s.source << ": " << e << "\n";
     return exit_input_error;
   }
+  // Checked on the scene's camera: a view of mostly back faces is black.
+  const double back_faces = back_face_fraction(s, s.view, ray_scene(s));
+  if (const std::string w = back_face_warning(back_faces); !w.empty())
+    std::cerr << "warning: " << s.source << ": " << w << "\n";
   if (as_json) {
     nlohmann::json j = {
+        {"back_face_fraction", back_faces},
         {"scene", s.source},
         {"surfaces", sum.surfaces},
         {"polygon_meshes", sum.polygon_meshes},

@@ -277,6 +277,11 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::TextWrapped("%s", view.error.c_str());
     ImGui::PopStyleColor();
   }
+  if (!state.warning.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.8f, 0.3f, 1));
+    ImGui::TextWrapped("%s", state.warning.c_str());
+    ImGui::PopStyleColor();
+  }
 
   if (ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
     solver_settings& solver = state.solver;

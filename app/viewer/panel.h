@@ -55,6 +55,7 @@ struct panel_state {
   bool show_still = false;     // the still's window; closed by its X or Esc, opened by a new still
   bool confirm_quit = false;   // the "quit while working?" popup
   std::string message;         // last action's result, e.g. where a screenshot went
+  std::string warning;         // about the scene as seen (back faces), shown under the errors
   bool refine_at_rest = true;  // refine the view towards the still while the camera rests
   int refined_passes = 0;      // passes of that refinement shown now (the window sets it)
 };

@@ -1,6 +1,7 @@
 #include "viewer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +28,7 @@
 #include "scripted_run.h"
 #include "solver_worker.h"
 #include "still_job.h"
+#include "trace/back_faces.h"
 #include "user_files.h"
 #include "window.h"
 
@@ -152,8 +154,7 @@ class viewer_app {
   double frame_ms_ = 0.0;
   int width_ = 0, height_ = 0;  // framebuffer, this frame
 
-  still_job still_;  // the ray-traced still, traced on its own thread, shown as
-                     // a texture
+  still_job still_;  // the ray-traced still, traced on its own thread, shown as a texture
   still_status still_shown_;
   std::uint64_t still_uploaded_ = 0;
   double still_exposure_ = 0.0;
@@ -168,13 +169,17 @@ class viewer_app {
   std::shared_ptr<const scene> refined_source_;
   clock_type::time_point last_motion_ = clock_type::now();
 
-  error_tracker errors_;  // error against time: a path-traced reference of the
-                          // camera on request
+  error_tracker errors_;  // error against time: a path-traced reference of the camera on request
   bool reference_requested_ = false;
 
   scripted_run script_;
   frame_timing timing_;
   clock_type::time_point started_ = clock_type::now();
+
+  // The share of the scene camera's view that is back faces, checked off
+  // the UI thread for each scene opened (-1: not known yet).
+  std::atomic<double> back_faces_{-1.0};
+  background_worker checks_;  // last: destroyed first, so no check outlives what it writes
 };
 
 viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& initial, const solver_settings& solver,
@@ -226,8 +231,7 @@ void viewer_app::take_published_work(const worker_view& view) {
     uploaded_solution_.reset();
   }
   if (view.source != shown_source_) {
-    if (shown_source_) {  // a newly opened scene brings its camera, and the old
-                          // still goes
+    if (shown_source_) {  // a newly opened scene brings its camera, and the old still goes
       scene_camera_ = view.source->view;
       orbit_ = orbit_from_camera(scene_camera_);
       still_.cancel();
@@ -237,6 +241,10 @@ void viewer_app::take_published_work(const worker_view& view) {
     }
     shown_source_ = view.source;
     if (view.source) {
+      back_faces_ = -1.0;
+      checks_.post([this, source = view.source] {
+        back_faces_ = back_face_fraction(*source, source->view, ray_scene(*source));
+      });
       glfwSetWindowTitle(window_, window_title(view.source->source).c_str());
       panel_.recent_scenes = remember_scene(view.source->source);
       panel_.bookmarks = read_bookmarks(view.source->source);
@@ -248,8 +256,7 @@ void viewer_app::take_published_work(const worker_view& view) {
       renderer_.update(*view.colours, glm::vec3(view.solution->ambient));
     else
       renderer_.update(*view.solution);
-    glFinish();  // llvmpipe copies on the CPU: finish so the time is the
-                 // upload's
+    glFinish();  // llvmpipe copies on the CPU: finish so the time is the upload's
     timing_.upload(milliseconds_since(start));
     uploaded_solution_ = view.solution;
   }
@@ -288,6 +295,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   const std::string setting = setting_key(panel_.solver);
   errors_.observe(view, setting_key(view.settings));
   const error_status error_shown = errors_.status(setting);
+  panel_.warning = back_face_warning(back_faces_);
   panel_.current_camera = camera_from_orbit(orbit_, scene_camera_);
   if (width_ > 0 && height_ > 0) {
     panel_.current_camera.width = width_;
@@ -344,8 +352,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
 
 void viewer_app::refine_at_rest(const worker_view& view) {
   const auto now = clock_type::now();
-  // Wireframe and false colour are views of the mesh, not of the light: they
-  // stay live.
+  // Wireframe and false colour are views of the mesh, not of the light: they stay live.
   const bool refine_wanted =
       panel_.refine_at_rest && !panel_.display.wireframe && panel_.display.colours == gl::false_colour::none;
   const bool moved = !same_view(orbit_, rested_orbit_) || width_ != rested_width_ || height_ != rested_height_ ||
@@ -383,8 +390,7 @@ void viewer_app::refine_at_rest(const worker_view& view) {
 }
 
 void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
-  send_to_worker(act, panel_,
-                 worker_);  // a reload keeps the scene on the worker: no copy here
+  send_to_worker(act, panel_, worker_);  // a reload keeps the scene on the worker: no copy here
   if (act.frame_scene) orbit_frame(orbit_, bounds(view), scene_camera_.fov_y_degrees);
   if (act.reset_camera) orbit_ = orbit_from_camera(scene_camera_);
   if (act.trace_still && view.source && !still_.running()) {
@@ -462,8 +468,7 @@ int viewer_app::run() {
     // Input: ImGui first; the view gets what the panel does not want.
     panel_actions keys = handle_input(window_, input_, pointer_, orbit_, scene_camera_.fov_y_degrees, view->running,
                                       still_.running(), dt, panel_);
-    if (!input_.dropped.empty()) {  // a file dropped on the window opens like
-                                    // the panel's Open
+    if (!input_.dropped.empty()) {  // a file dropped on the window opens like the panel's Open
       panel_.scene_path = input_.dropped.back();
       input_.dropped.clear();
       keys.open_scene = true;

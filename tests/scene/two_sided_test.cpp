@@ -2,6 +2,7 @@
 // with their own radiosity, in the solvers and in the tracers.
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 #include "scene/scene_io.h"
 #include "scene/two_sided.h"
 #include "test_files.h"
+#include "trace/back_faces.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {
@@ -145,6 +147,27 @@ TEST(TwoSided, SceneFilesAndGltfSayIt) {
     "surfaces": [{"polygon": [[0, 0, 0], [1, 0, 0], [1, 0, 1]], "material": "paper"}]})"),
                           s, bad));
   EXPECT_NE(bad.error.find("materials.paper.two_sided"), std::string::npos) << bad.error;
+}
+
+// The view of an upside-down floor is mostly back faces, and warned about;
+// the same floor two-sided, or the right way up, is not.
+TEST(TwoSided, AViewOfMostlyBackFacesIsWarnedAbout) {
+  for (const auto& [upside_down, two_sided, expected] :
+       std::vector<std::tuple<bool, bool, double>>{{false, false, 0.0}, {true, false, 1.0}, {true, true, 0.0}}) {
+    scene s;
+    const int floor = add_material(s, rgb(0.5));
+    s.materials[std::size_t(floor)].two_sided = two_sided;
+    std::vector<vec3> corners = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    if (upside_down) std::reverse(corners.begin(), corners.end());
+    add_polygon(s, corners, floor);
+    add_back_sides(s);
+    s.view.eye = {0, 2, 0.5};
+    s.view.target = {0, 0, 0};
+    const double fraction = back_face_fraction(s, s.view, ray_scene(s));
+    EXPECT_DOUBLE_EQ(fraction, expected) << upside_down << two_sided;
+    EXPECT_EQ(back_face_warning(fraction).empty(), expected < 0.5);
+  }
+  EXPECT_NE(back_face_warning(0.62).find("(62% of what it hits)"), std::string::npos);
 }
 
 }  // namespace
