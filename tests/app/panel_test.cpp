@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -242,6 +243,16 @@ TEST(Panel, AssetScenesAreFoundNextToTheExecutable) {
   EXPECT_TRUE(has("assets/teapot/teapot.json"));
   EXPECT_TRUE(has("embedded:cornell_box/cornell_box.json"));
   EXPECT_TRUE(has("generated:box-room-60"));
+  // Installed (cmake --install): bin/bounce finds share/bounce/assets.
+  const std::filesystem::path prefix = std::filesystem::temp_directory_path() / "bounce_tests" / "install_prefix";
+  std::filesystem::remove_all(prefix);
+  std::filesystem::create_directories(prefix / "bin");
+  std::filesystem::create_directories(prefix / "share/bounce/assets/room");
+  std::ofstream(prefix / "share/bounce/assets/room/room.json") << "{}";
+  const std::vector<std::string> installed = find_asset_scenes(prefix / "bin" / "bounce");
+  EXPECT_TRUE(std::any_of(installed.begin(), installed.end(),
+                          [](const std::string& s) { return s.ends_with("share/bounce/assets/room/room.json"); }));
+  std::filesystem::remove_all(prefix);
   // Nowhere near a checkout: the built-in scenes remain.
   const std::vector<std::string> bare = find_asset_scenes("/nonexistent/bin/bounce");
   EXPECT_GE(bare.size(), 3u);
