@@ -1,0 +1,86 @@
+// A file dropped on the window opens, as from a file manager: the drop is
+// made over XDND by tests/app/xdnd_drop (no X tool can make one) on a real
+// window under Xvfb.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "test_files.h"
+
+namespace bounce {
+namespace {
+
+using testing::scratch_dir;
+
+// A lit floor: small enough to solve in a moment at --max-edge 0.5.
+constexpr const char* small_scene = R"({
+  "materials": {"floor": {"rho": [0.6, 0.6, 0.6]}, "lamp": {"ke": [4, 4, 4]}},
+  "surfaces": [
+    {"name": "floor", "polygon": [[0, 0, 0], [0, 0, 2], [2, 0, 2], [2, 0, 0]], "material": "floor"},
+    {"name": "lamp", "polygon": [[0.7, 0.5, 0.7], [1.3, 0.5, 0.7], [1.3, 0.5, 1.3], [0.7, 0.5, 1.3]], "material": "lamp"}
+  ]
+})";
+
+std::string quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+std::string read_first_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Dropping second.json on the window showing first.json opens it: the title
+// becomes "second.json - Bounce" and it heads the recent list.
+TEST(Window, ADroppedFileOpens) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xwininfo >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run or xwininfo is not installed (third_party/install-deps.sh installs them)";
+  scratch_dir dir;
+  const std::string first = dir.write("first.json", small_scene);
+  const std::string second = dir.write("second.json", small_scene);
+  // Inside one X server: start the window on first.json, drop second.json
+  // on it (the tool waits up to 60 s for the window), then poll the window
+  // tree (at most 60 s, and only while bounce runs: its window goes with
+  // it) for the new title, and let the scripted run end (exiting 0).
+  std::string script = "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
+  script += quoted(BOUNCE_EXE) + " view " + quoted(first) + " --max-edge 0.5 --frames 600 --exit >" +
+            quoted(dir.path("bounce.txt")) + " 2>&1 &\n";
+  script += "bounce=$!\n";
+  script += quoted(XDND_DROP_EXE) + " 'first.json - Bounce' " + quoted(second) + " 60 >" +
+            quoted(dir.path("drop.txt")) + " 2>&1\n";
+  script += "echo $? > " + quoted(dir.path("drop_status.txt")) + "\n";
+  script +=
+      "for i in $(seq 600); do\n"
+      "  if xwininfo -root -tree | grep -q 'second.json - Bounce'; then echo found > " +
+      quoted(dir.path("title.txt")) +
+      "; break; fi\n"
+      "  kill -0 $bounce 2>/dev/null || break\n"
+      "  sleep 0.1\n"
+      "done\n"
+      "wait $bounce\n";  // the script's status: bounce's
+  const std::string command = "xvfb-run -a sh " + dir.write("run.sh", script);
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << read_all(dir.path("bounce.txt"));
+  EXPECT_EQ(read_first_line(dir.path("drop_status.txt")), "0") << read_all(dir.path("drop.txt"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path("title.txt")))
+      << "no window titled 'second.json - Bounce' after the drop\nbounce said:\n"
+      << read_all(dir.path("bounce.txt"));
+  EXPECT_EQ(read_first_line(dir.path("config/bounce/recent.txt")),
+            std::filesystem::path(second).lexically_normal().string());
+}
+
+}  // namespace
+}  // namespace bounce
