@@ -46,7 +46,9 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
     std::fprintf(stderr, "error: %s\n", view.error().c_str());
     return exit_input_error;
   }
-  view.renderer().upload(mesh);
+  // The renderer takes the scene for its textures and background; `s` outlives it.
+  const std::shared_ptr<const scene> source(&s, [](const scene*) {});
+  view.renderer().upload(mesh, source);
   const glm::mat4 view_projection(projection_matrix(s.view, scene_bounds(s)) * view_matrix(s.view));
   const glm::vec3 eye(s.view.eye);
   gl::display_settings settings;
@@ -126,7 +128,7 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
   const patch_mesh* shown_mesh = &mesh;
   auto show = [&](const radiosity_state& st) {
     if (st.mesh != shown_mesh) {
-      view.renderer().upload(*st.mesh);
+      view.renderer().upload(*st.mesh, source);
       shown_mesh = st.mesh;
     }
     view.renderer().update(*make_snapshot(st));

@@ -1,5 +1,8 @@
 #version 330 core
-// Centroid, perspective-corrected by hand: see gouraud.vert.
+// Centroid, perspective-corrected by hand: see gouraud.vert. Compiled three
+// times (mesh_renderer.cpp): as it stands for untextured materials, with
+// TEXTURED for textured ones (so that untextured pixels pay nothing for
+// textures), and with BACKGROUND for what rays that miss the scene see.
 noperspective centroid in vec4 radiance_w;
 noperspective centroid in vec4 unshot_w;
 noperspective centroid in vec3 normal_w;
@@ -8,6 +11,22 @@ smooth centroid in vec3 radiance_s;  // the fallback: see gouraud.vert
 smooth centroid in vec4 unshot_s;
 smooth centroid in vec3 normal_s;
 smooth centroid in vec3 position_s;
+#ifdef TEXTURED
+noperspective centroid in vec2 uv_w;
+smooth centroid in vec2 uv_s;
+#endif
+
+#ifdef BACKGROUND
+// The ray tracer's escaped_radiance (core/scene/sky.cpp): the sky where the
+// scene has one, else the background colour.
+uniform vec3 background;
+uniform int sky;  // 1: the sky below, not the background
+uniform vec3 zenith;
+uniform vec3 horizon;
+uniform vec3 sky_up;  // unit
+uniform mat4 inverse_view_projection;
+uniform vec4 viewport;  // x, y, width, height
+#endif
 
 uniform float exposure;
 uniform int tone_curve;        // 0: clamp + sRGB, 1: filmic (ACES fit) + sRGB, 2: linear radiance (PFM)
@@ -15,6 +34,17 @@ uniform int false_colour;      // 0: radiance, 1: unshot power (log scale), 2: e
 uniform float largest_element;  // element size that maps to the top of the scale
 uniform int highlight_back_faces;
 uniform vec3 eye;
+#ifdef TEXTURED
+// Textures, as the ray tracer applies them (core/scene/texture.cpp): the
+// reflected part of B times texture(uv) / mean(texture).
+uniform int texture_mode;  // 1: image, 2: checker
+uniform sampler2D image;   // linear RGB, row 0 the image's top (v = 1), repeating
+uniform vec3 checker0;
+uniform vec3 checker1;
+uniform float checker_scale;  // squares per unit of uv
+uniform vec3 inverse_mean;    // 1 / mean(texture), 0 where the mean is 0
+uniform vec3 emitted;         // the material's ke: emission is not textured
+#endif
 
 out vec4 fragment;
 
@@ -34,7 +64,49 @@ vec3 heat(float t) {
   return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
 }
 
+// The checker of texture_value: color0 where floor(u s) + floor(v s) is
+// even. A pixel whose footprint lies inside one square takes that square's
+// colour exactly; one that straddles edges takes the box-filtered mean of
+// the footprint (no moire in the distance, where the still averages
+// samples).
+#ifdef TEXTURED
+vec3 checker(vec2 uv) {
+  vec2 p = uv * checker_scale;
+  vec2 w = max(abs(dFdx(p)), abs(dFdy(p)));
+  vec2 lo = floor(p - 0.5 * w), hi = floor(p + 0.5 * w);
+  float t;
+  if (lo == hi) {
+    t = mod(lo.x + lo.y, 2.0);
+  } else {
+    // Integral of the square wave (0 on even squares, 1 on odd) over the footprint.
+    w = max(w, vec2(1e-6));
+    vec2 s = clamp(2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) - abs(fract((p + 0.5 * w) * 0.5) - 0.5)) / w, -1.0, 1.0);
+    t = 0.5 - 0.5 * s.x * s.y;
+  }
+  return mix(checker0, checker1, t);
+}
+#endif
+
+// What the pixel shows of a radiance: exposed and tone mapped, or as it is.
+vec4 displayed(vec3 radiance) {
+  vec3 value = radiance * exposure;
+  if (tone_curve == 2) return vec4(radiance, 1.0);  // linear radiance, unscaled
+  if (tone_curve == 1) return vec4(srgb(filmic(value)), 1.0);
+  return vec4(srgb(value), 1.0);
+}
+
 void main() {
+#ifdef BACKGROUND
+  vec3 radiance = background;
+  if (sky != 0) {
+    vec2 ndc = (gl_FragCoord.xy - viewport.xy) / viewport.zw * 2.0 - 1.0;
+    vec4 far = inverse_view_projection * vec4(ndc, 1.0, 1.0);
+    vec3 dir = normalize(far.xyz / far.w - eye);
+    radiance = horizon + (zenith - horizon) * max(0.0, dot(dir, sky_up));
+  }
+  fragment = displayed(radiance);
+  return;
+#endif
   float w = 1.0 / radiance_w.w;
   vec3 vertex_radiance = radiance_w.xyz * w;
   vec3 vertex_unshot = unshot_w.xyz * w;
@@ -43,13 +115,25 @@ void main() {
   vec3 world_position = position_w * w;
   // Where the clipper left no quotient (see gouraud.vert): GL's own values.
   vec4 check = vec4(vertex_radiance, vertex_element_size) + vec4(vertex_unshot, 0.0);
-  if (!(radiance_w.w > 0.0) || any(isnan(check)) || any(isinf(check))) {
+  bool quotients = radiance_w.w > 0.0 && !any(isnan(check)) && !any(isinf(check));
+  if (!quotients) {
     vertex_radiance = radiance_s;
     vertex_unshot = unshot_s.xyz;
     vertex_element_size = unshot_s.w;
     world_normal = normal_s;
     world_position = position_s;
   }
+#ifdef TEXTURED
+  vec2 uv = uv_w * w;
+  if (!quotients || any(isnan(uv)) || any(isinf(uv))) uv = uv_s;
+  // Outside any divergent return, so that the derivatives are defined.
+  if (texture_mode == 1) {
+    vec3 detail = texture(image, vec2(uv.x, 1.0 - uv.y)).rgb * inverse_mean;
+    vertex_radiance = emitted + (vertex_radiance - emitted) * detail;
+  } else if (texture_mode == 2) {
+    vertex_radiance = emitted + (vertex_radiance - emitted) * checker(uv) * inverse_mean;
+  }
+#endif
   if (highlight_back_faces != 0 && dot(world_normal, eye - world_position) < 0.0) {
     fragment = vec4(1.0, 0.0, 1.0, 1.0);  // magenta: a flipped normal faces the camera
     return;
@@ -63,12 +147,5 @@ void main() {
     fragment = vec4(srgb(heat(vertex_element_size / largest_element)), 1.0);
     return;
   }
-  vec3 value = vertex_radiance * exposure;
-  if (tone_curve == 2) {
-    fragment = vec4(vertex_radiance, 1.0);  // linear radiance, unscaled
-  } else if (tone_curve == 1) {
-    fragment = vec4(srgb(filmic(value)), 1.0);
-  } else {
-    fragment = vec4(srgb(value), 1.0);
-  }
+  fragment = displayed(vertex_radiance);
 }

@@ -6,6 +6,9 @@ layout(location = 2) in vec3 reflectance;  // rho, for the display ambient term
 layout(location = 3) in vec3 radiosity;    // B, updated after every solver step
 layout(location = 4) in vec3 unshot;       // mean unshot radiosity of the vertex's elements
 layout(location = 5) in float element_size;  // square root of the mean area of the vertex's elements
+#ifdef TEXTURED  // see gouraud.frag
+layout(location = 6) in vec2 uv;  // texture coordinates
+#endif
 
 uniform mat4 view_projection;
 uniform vec3 ambient;        // Cohen 1988 ambient radiosity, zero when switched off
@@ -31,9 +34,20 @@ smooth centroid out vec3 radiance_s;
 smooth centroid out vec4 unshot_s;
 smooth centroid out vec3 normal_s;
 smooth centroid out vec3 position_s;
+#ifdef TEXTURED
+noperspective centroid out vec2 uv_w;
+smooth centroid out vec2 uv_s;
+#endif
 
 void main() {
   const float pi = 3.14159265358979;
+#ifdef BACKGROUND  // see gouraud.frag
+  // Corners (-1, -1), (3, -1), (-1, 3) cover the screen; z = w puts the
+  // triangle on the far plane, where only samples no surface drew pass.
+  vec2 corner = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+  gl_Position = vec4(corner, 1.0, 1.0);
+  return;
+#endif
   gl_Position = view_projection * vec4(position, 1.0);
   float inv_w = 1.0 / gl_Position.w;
   radiance_w = vec4((radiosity + reflectance * ambient) / pi, 1.0) * inv_w;
@@ -44,4 +58,8 @@ void main() {
   unshot_s = vec4(unshot / pi, element_size);
   normal_s = normal;
   position_s = position;
+#ifdef TEXTURED
+  uv_w = uv * inv_w;
+  uv_s = uv;
+#endif
 }

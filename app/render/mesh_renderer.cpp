@@ -2,40 +2,84 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include <glad/gl.h>
+#include <glm/matrix.hpp>
 
 #include "gl_program.h"
+#include "scene/texture.h"
 #include "shader_files.h"
 
 namespace bounce::gl {
+namespace {
+
+// Halves an RGB image (2x2 boxes; an odd last row or column counts once),
+// for images past the driver's largest texture.
+void halve(int& width, int& height, std::vector<float>& texels) {
+  const int w = std::max(1, width / 2), h = std::max(1, height / 2);
+  std::vector<float> out(std::size_t(w) * h * 3, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        float sum = 0.0f;
+        int n = 0;
+        for (int j = 2 * y; j < std::min(height, 2 * y + 2); ++j)
+          for (int i = 2 * x; i < std::min(width, 2 * x + 2); ++i, ++n)
+            sum += texels[(std::size_t(j) * width + i) * 3 + c];
+        out[(std::size_t(y) * w + x) * 3 + c] = sum / float(n);
+      }
+  width = w;
+  height = h;
+  texels = std::move(out);
+}
+
+// The shader with `name` defined after its #version line; #line keeps the
+// compiler's line numbers those of the file.
+shader_source with_define(shader_source source, const std::string& name) {
+  const std::size_t end = source.text.find('\n');
+  if (end != std::string::npos) source.text.insert(end + 1, "#define " + name + "\n#line 2\n");
+  return source;
+}
+
+}  // namespace
 
 mesh_renderer::~mesh_renderer() {
   // The context may already be gone when a renderer outlives it; the
   // owner destroys the renderer first (see headless and viewer).
   if (vao_) glDeleteVertexArrays(1, &vao_);
+  if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+  delete_textures();
   const unsigned int buffers[] = {static_buffer_, dynamic_buffer_, index_buffer_};
   for (unsigned int b : buffers)
     if (b) glDeleteBuffers(1, &b);
   if (program_) glDeleteProgram(program_);
   if (wire_program_) glDeleteProgram(wire_program_);
+  if (textured_program_) glDeleteProgram(textured_program_);
+  if (background_program_) glDeleteProgram(background_program_);
 }
 
 bool mesh_renderer::init(std::string& error) {
   const shader_source vertex = shader_file("gouraud.vert");
-  program_ = make_program(vertex, shader_file("gouraud.frag"), error);
+  const shader_source fragment = shader_file("gouraud.frag");
+  program_ = make_program(vertex, fragment, error);
   if (!program_) return false;
+  textured_program_ = make_program(with_define(vertex, "TEXTURED"), with_define(fragment, "TEXTURED"), error);
+  if (!textured_program_) return false;
+  background_program_ = make_program(with_define(vertex, "BACKGROUND"), with_define(fragment, "BACKGROUND"), error);
+  if (!background_program_) return false;
   wire_program_ = make_program(vertex, shader_file("wire.frag"), error);
   if (!wire_program_) return false;
   glGenVertexArrays(1, &vao_);
+  glGenVertexArrays(1, &empty_vao_);  // the background's full-screen triangle needs no attributes
   glGenBuffers(1, &static_buffer_);
   glGenBuffers(1, &dynamic_buffer_);
   glGenBuffers(1, &index_buffer_);
   return true;
 }
 
-mesh_arrays make_mesh_arrays(const patch_mesh& mesh) {
+mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source) {
   mesh_arrays out;
   const std::size_t vertex_count = mesh.vertex_count();
   out.vertex_count = vertex_count;
@@ -47,9 +91,10 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh) {
       area_sum[mesh.elements[e][k]] += mesh.element_areas[e];
       ++count[mesh.elements[e][k]];
     }
-  // Static: position, normal, reflectance, element size, interleaved.
+  // Static: position, normal, reflectance, element size, uv, interleaved.
+  const bool has_uvs = mesh.uvs.size() == vertex_count;
   std::vector<float>& data = out.vertices;
-  data.reserve(vertex_count * 10);
+  data.reserve(vertex_count * mesh_arrays::floats_per_vertex);
   for (std::size_t v = 0; v < vertex_count; ++v) {
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.positions[v][k]));
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.normals[v][k]));
@@ -57,16 +102,108 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh) {
     const float size = count[v] ? float(std::sqrt(area_sum[v] / count[v])) : 0.0f;
     data.push_back(size);
     out.largest_element = std::max(out.largest_element, size);
+    for (int k = 0; k < 2; ++k) data.push_back(has_uvs ? float(mesh.uvs[v][k]) : 0.0f);
   }
+  // Untextured elements in the mesh's order (one draw, as before textures),
+  // then each textured material's elements (a draw each, its texture bound).
+  auto texture_of = [&](int material) {
+    if (!source || material < 0 || std::size_t(material) >= source->materials.size()) return -1;
+    const int t = source->materials[std::size_t(material)].texture;
+    return t >= 0 && std::size_t(t) < source->textures.size() ? t : -1;
+  };
+  const bool has_materials = mesh.element_materials.size() == mesh.element_count();
+  std::map<int, std::vector<std::size_t>> textured;  // material -> its elements
   out.indices.reserve(mesh.element_count() * 3);
-  for (const glm::ivec3& t : mesh.elements)
-    for (int k = 0; k < 3; ++k) out.indices.push_back(unsigned(t[k]));
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const int material = has_materials ? mesh.element_materials[e] : -1;
+    if (texture_of(material) >= 0) {
+      textured[material].push_back(e);
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) out.indices.push_back(unsigned(mesh.elements[e][k]));
+  }
+  out.untextured_count = out.indices.size();
+  for (const auto& [material, elements] : textured) {
+    textured_run run;
+    run.texture = texture_of(material);
+    run.emitted = glm::vec3(source->materials[std::size_t(material)].ke);
+    run.first = out.indices.size();
+    for (std::size_t e : elements)
+      for (int k = 0; k < 3; ++k) out.indices.push_back(unsigned(mesh.elements[e][k]));
+    run.count = out.indices.size() - run.first;
+    out.textured.push_back(run);
+  }
+  out.source = std::move(source);
   return out;
+}
+
+void mesh_renderer::delete_textures() {
+  for (const gl_texture& t : textures_)
+    if (t.id) glDeleteTextures(1, &t.id);
+  textures_.clear();
+  textures_source_.reset();
+}
+
+void mesh_renderer::upload_textures(const std::shared_ptr<const scene>& source) {
+  background_ = source ? glm::vec3(source->background) : glm::vec3(0.0f);
+  sky_ = source && source->sky.on();
+  if (sky_) {
+    zenith_ = glm::vec3(source->sky.zenith);
+    horizon_ = glm::vec3(source->sky.horizon);
+    sky_up_ = glm::vec3(glm::normalize(source->sky.up));
+  }
+  if (source == textures_source_) return;
+  delete_textures();
+  textures_source_ = source;
+  if (!source) return;
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+  for (const texture& t : source->textures) {
+    gl_texture g;
+    g.kind = t.kind;
+    g.color0 = glm::vec3(t.color0);
+    g.color1 = glm::vec3(t.color1);
+    g.scale = float(t.scale);
+    // The mean of the scene's own texels, as the mesher and the ray tracer take it.
+    const rgb mean = texture_mean(t);
+    for (int c = 0; c < 3; ++c) g.inverse_mean[c] = mean[c] > 0.0 ? float(1.0 / mean[c]) : 0.0f;
+    if (t.kind == texture_kind::image && t.width > 0 && t.height > 0 &&
+        t.texels.size() == std::size_t(t.width) * t.height * 3) {
+      int width = t.width, height = t.height;
+      std::vector<float> reduced;
+      const float* texels = t.texels.data();
+      if (largest > 0 && std::max(width, height) > largest) {
+        reduced = t.texels;
+        while (std::max(width, height) > largest) halve(width, height, reduced);
+        texels = reduced.data();
+      }
+      // Half float: linear values kept as they are (above 1 too), to
+      // 0.05%; sampled bilinearly with repeat, as texture_value does.
+      glGenTextures(1, &g.id);
+      glBindTexture(GL_TEXTURE_2D, g.id);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, width, height, 0, GL_RGB, GL_FLOAT, texels);
+      glGenerateMipmap(GL_TEXTURE_2D);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glBindTexture(GL_TEXTURE_2D, 0);
+    } else if (t.kind == texture_kind::image) {
+      g.kind = texture_kind::checker;  // no texels: texture_value's 1 everywhere
+      g.color0 = g.color1 = glm::vec3(1.0f);
+      g.inverse_mean = glm::vec3(1.0f);
+    }
+    textures_.push_back(g);
+  }
 }
 
 void mesh_renderer::upload(const mesh_arrays& arrays) {
   vertex_count_ = arrays.vertex_count;
   largest_element_ = arrays.largest_element;
+  untextured_count_ = arrays.untextured_count;
+  textured_ = arrays.textured;
+  upload_textures(arrays.source);
   const std::vector<float>& data = arrays.vertices;
   const std::vector<unsigned int>& indices = arrays.indices;
   index_count_ = int(indices.size());
@@ -74,7 +211,7 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, static_buffer_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
-  const GLsizei stride = 10 * sizeof(float);
+  const GLsizei stride = mesh_arrays::floats_per_vertex * sizeof(float);
   for (GLuint attribute = 0; attribute < 3; ++attribute) {
     glEnableVertexAttribArray(attribute);
     glVertexAttribPointer(attribute, 3, GL_FLOAT, GL_FALSE, stride,
@@ -83,6 +220,9 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   glEnableVertexAttribArray(5);
   glVertexAttribPointer(5, 1, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<const void*>(std::uintptr_t(9 * sizeof(float))));
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(std::uintptr_t(10 * sizeof(float))));
   // Dynamic: radiosity then unshot, two blocks, rewritten every step.
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertex_count_ * 6 * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
@@ -121,17 +261,70 @@ void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // rooms are seen from inside; back faces are shown (or highlighted)
   glBindVertexArray(vao_);
-  glUseProgram(program_);
-  glUniformMatrix4fv(glGetUniformLocation(program_, "view_projection"), 1, GL_FALSE, &view_projection[0][0]);
   const glm::vec3 ambient = settings.ambient ? ambient_ : glm::vec3(0.0f);
-  glUniform3fv(glGetUniformLocation(program_, "ambient"), 1, &ambient[0]);
-  glUniform3fv(glGetUniformLocation(program_, "eye"), 1, &eye[0]);
-  glUniform1f(glGetUniformLocation(program_, "exposure"), float(settings.exposure));
-  glUniform1i(glGetUniformLocation(program_, "tone_curve"), int(settings.curve));
-  glUniform1i(glGetUniformLocation(program_, "false_colour"), int(settings.colours));
-  glUniform1f(glGetUniformLocation(program_, "largest_element"), std::max(largest_element_, 1e-30f));
-  glUniform1i(glGetUniformLocation(program_, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  // The uniforms both variants of gouraud.frag share.
+  auto use = [&](unsigned int program) {
+    glUseProgram(program);
+    glUniformMatrix4fv(glGetUniformLocation(program, "view_projection"), 1, GL_FALSE, &view_projection[0][0]);
+    glUniform3fv(glGetUniformLocation(program, "ambient"), 1, &ambient[0]);
+    glUniform3fv(glGetUniformLocation(program, "eye"), 1, &eye[0]);
+    glUniform1f(glGetUniformLocation(program, "exposure"), float(settings.exposure));
+    glUniform1i(glGetUniformLocation(program, "tone_curve"), int(settings.curve));
+    glUniform1i(glGetUniformLocation(program, "false_colour"), int(settings.colours));
+    glUniform1f(glGetUniformLocation(program, "largest_element"), std::max(largest_element_, 1e-30f));
+    glUniform1i(glGetUniformLocation(program, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
+  };
+  use(program_);
+  glDrawElements(GL_TRIANGLES, GLsizei(untextured_count_), GL_UNSIGNED_INT, nullptr);
+  if (!textured_.empty()) {
+    const unsigned int p = textured_program_;
+    use(p);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(p, "image"), 0);
+    const GLint mode = glGetUniformLocation(p, "texture_mode"), emitted = glGetUniformLocation(p, "emitted"),
+                inverse_mean = glGetUniformLocation(p, "inverse_mean"), checker0 = glGetUniformLocation(p, "checker0"),
+                checker1 = glGetUniformLocation(p, "checker1"), scale = glGetUniformLocation(p, "checker_scale");
+    for (const textured_run& run : textured_) {
+      if (run.texture < 0 || std::size_t(run.texture) >= textures_.size()) continue;
+      const gl_texture& t = textures_[std::size_t(run.texture)];
+      glUniform1i(mode, t.id ? 1 : 2);
+      glBindTexture(GL_TEXTURE_2D, t.id);
+      glUniform3fv(emitted, 1, &run.emitted[0]);
+      glUniform3fv(inverse_mean, 1, &t.inverse_mean[0]);
+      glUniform3fv(checker0, 1, &t.color0[0]);
+      glUniform3fv(checker1, 1, &t.color1[0]);
+      glUniform1f(scale, t.scale);
+      glDrawElements(GL_TRIANGLES, GLsizei(run.count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(std::uintptr_t(run.first * sizeof(unsigned int))));
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  // The background where no sample holds a surface: a full-screen triangle
+  // at the far plane through the same shader, so it gets the surfaces'
+  // exposure and tone curve (and in linear output, its radiance unscaled).
+  // Black needs no pass: the callers clear to black. False colours keep it.
+  if (settings.colours == false_colour::none && (sky_ || background_ != glm::vec3(0.0f))) {
+    const unsigned int p = background_program_;
+    use(p);
+    glUniform3fv(glGetUniformLocation(p, "background"), 1, &background_[0]);
+    glUniform1i(glGetUniformLocation(p, "sky"), sky_ ? 1 : 0);
+    glUniform3fv(glGetUniformLocation(p, "zenith"), 1, &zenith_[0]);
+    glUniform3fv(glGetUniformLocation(p, "horizon"), 1, &horizon_[0]);
+    glUniform3fv(glGetUniformLocation(p, "sky_up"), 1, &sky_up_[0]);
+    const glm::mat4 inverse = glm::inverse(view_projection);
+    glUniformMatrix4fv(glGetUniformLocation(p, "inverse_view_projection"), 1, GL_FALSE, &inverse[0][0]);
+    GLint viewport[4] = {0, 0, 1, 1};
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glUniform4f(glGetUniformLocation(p, "viewport"), float(viewport[0]), float(viewport[1]), float(viewport[2]),
+                float(viewport[3]));
+    glBindVertexArray(empty_vao_);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glBindVertexArray(vao_);
+  }
   if (settings.wireframe) {
     // Edges pulled slightly towards the eye so they win the depth test.
     glUseProgram(wire_program_);

@@ -200,7 +200,7 @@ void solver_worker::publish() {
   v->settings.stop = criterion_;
   if (v->mesh != arrays_mesh_) {  // once per mesh: a large one takes a while
     mesh_arrays_.reset();
-    if (v->mesh) mesh_arrays_ = std::make_shared<const gl::mesh_arrays>(gl::make_mesh_arrays(*v->mesh));
+    if (v->mesh) mesh_arrays_ = std::make_shared<const gl::mesh_arrays>(gl::make_mesh_arrays(*v->mesh, v->source));
     arrays_mesh_ = v->mesh;
   }
   v->mesh_arrays = mesh_arrays_;

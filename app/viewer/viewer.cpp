@@ -224,7 +224,7 @@ void viewer_app::take_published_work(const worker_view& view) {
     if (view.mesh_arrays)
       renderer_.upload(*view.mesh_arrays);
     else
-      renderer_.upload(*view.mesh);
+      renderer_.upload(*view.mesh, view.source);
     glFinish();
     timing_.mesh_upload(milliseconds_since(start));
     uploaded_mesh_ = view.mesh;

@@ -10,6 +10,7 @@
 #include <map>
 #include <numbers>
 #include <queue>
+#include <tuple>
 #include <vector>
 
 #include "mesh/adaptive.h"
@@ -41,6 +42,7 @@ struct working_mesh {
   OpenMesh::VPropHandleT<vec3> normal_sum;  // area-weighted normals of the welded corners
   OpenMesh::VPropHandleT<int> vertex_material;
   OpenMesh::VPropHandleT<int> vertex_surface;
+  OpenMesh::VPropHandleT<vec2> vertex_uv;
   OpenMesh::FPropHandleT<int> face_material;
   OpenMesh::FPropHandleT<int> face_surface;
   OpenMesh::FPropHandleT<bool> face_flat;  // from a polygon: may be refined by bisection
@@ -51,6 +53,7 @@ struct working_mesh {
     mesh.add_property(normal_sum);
     mesh.add_property(vertex_material);
     mesh.add_property(vertex_surface);
+    mesh.add_property(vertex_uv);
     mesh.add_property(face_material);
     mesh.add_property(face_surface);
     mesh.add_property(face_flat);
@@ -59,16 +62,20 @@ struct working_mesh {
 
 // Welds corners of one surface's triangles: same position (exactly: the
 // tessellator already merged what should be merged), same material, and
-// normals closer than the crease angle share one vertex.
+// normals closer than the crease angle share one vertex. Corners of a
+// textured material must also agree on uv, so that the renderer can
+// interpolate uv per vertex across a texture seam.
 struct welder {
   working_mesh& w;
   int surface;
   double cos_crease;
+  const std::vector<material>& materials;
   struct candidate {
     om_mesh::VertexHandle vertex;
     vec3 normal;  // the first corner's normal: comparing against a running mean would drift
   };
-  std::map<std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, int>, std::vector<candidate>> by_key;
+  using key = std::tuple<std::uint64_t, std::uint64_t, std::uint64_t, int, std::uint64_t, std::uint64_t>;
+  std::map<key, std::vector<candidate>> by_key;
 
   static std::uint64_t bits(double d) {
     if (d == 0.0) d = 0.0;  // -0 and +0 are one position
@@ -77,25 +84,28 @@ struct welder {
     return b;
   }
 
-  om_mesh::VertexHandle vertex_for(const vec3& p, const vec3& n, int material) {
-    auto& list = by_key[{bits(p.x), bits(p.y), bits(p.z), material}];
+  om_mesh::VertexHandle vertex_for(const vec3& p, const vec3& n, int material, const vec2& uv) {
+    const bool textured = materials[std::size_t(material)].texture >= 0;
+    auto& list =
+        by_key[{bits(p.x), bits(p.y), bits(p.z), material, textured ? bits(uv.x) : 0, textured ? bits(uv.y) : 0}];
     for (const candidate& c : list)
       if (glm::dot(c.normal, n) >= cos_crease) return c.vertex;
-    return list.emplace_back(candidate{new_vertex(p, material), n}).vertex;
+    return list.emplace_back(candidate{new_vertex(p, material, uv), n}).vertex;
   }
 
-  om_mesh::VertexHandle new_vertex(const vec3& p, int material) {
+  om_mesh::VertexHandle new_vertex(const vec3& p, int material, const vec2& uv) {
     om_mesh::VertexHandle v = w.mesh.add_vertex(to_om(p));
     w.mesh.property(w.normal_sum, v) = vec3(0.0);
     w.mesh.property(w.vertex_material, v) = material;
     w.mesh.property(w.vertex_surface, v) = surface;
+    w.mesh.property(w.vertex_uv, v) = uv;
     return v;
   }
 };
 
 void add_surface(working_mesh& w, const triangle_mesh& tess, int surface, bool flat, double cos_crease,
-                 std::size_t& nonmanifold) {
-  welder weld{w, surface, cos_crease, {}};
+                 const std::vector<material>& materials, std::size_t& nonmanifold) {
+  welder weld{w, surface, cos_crease, materials, {}};
   for (std::size_t t = 0; t < tess.triangles.size(); ++t) {
     const glm::ivec3 tri = tess.triangles[t];
     const int material = tess.materials[t];
@@ -104,14 +114,14 @@ void add_surface(working_mesh& w, const triangle_mesh& tess, int surface, bool f
     const double area = 0.5 * glm::length(cross);
     if (!(area > 0.0)) continue;
     om_mesh::VertexHandle v[3];
-    for (int k = 0; k < 3; ++k) v[k] = weld.vertex_for(p[k], tess.normals[tri[k]], material);
+    for (int k = 0; k < 3; ++k) v[k] = weld.vertex_for(p[k], tess.normals[tri[k]], material, tess.uvs[tri[k]]);
     if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
     om_mesh::FaceHandle f = w.mesh.add_face(v[0], v[1], v[2]);
     if (!f.is_valid()) {
       // A non-manifold configuration (e.g. three faces on one edge): keep
       // the face with its own vertices rather than losing it.
       ++nonmanifold;
-      for (int k = 0; k < 3; ++k) v[k] = weld.new_vertex(p[k], material);
+      for (int k = 0; k < 3; ++k) v[k] = weld.new_vertex(p[k], material, tess.uvs[tri[k]]);
       f = w.mesh.add_face(v[0], v[1], v[2]);
     }
     for (int k = 0; k < 3; ++k) w.mesh.property(w.normal_sum, v[k]) += area * tess.normals[tri[k]];
@@ -157,6 +167,7 @@ bool refine_flat_faces(working_mesh& w, double max_edge, std::string& error) {
         glm::normalize(m.property(w.normal_sum, a)) + glm::normalize(m.property(w.normal_sum, b));
     m.property(w.vertex_material, mid) = m.property(w.vertex_material, a);
     m.property(w.vertex_surface, mid) = m.property(w.vertex_surface, a);
+    m.property(w.vertex_uv, mid) = 0.5 * (m.property(w.vertex_uv, a) + m.property(w.vertex_uv, b));
     m.split_copy(e, mid);  // copies the face properties to the new faces
     if (m.n_faces() > max_patch_elements) {
       error = "the patch mesh would exceed " + std::to_string(max_patch_elements) + " elements at max edge " +
@@ -261,7 +272,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   // counts them and keeps them, and the caller warns once with the count.
   ::omerr().disable();
   for (std::size_t i = 0; i < s.surfaces.size(); ++i)
-    add_surface(w, tessellated[i], static_cast<int>(i), flat[i], cos_crease, nonmanifold);
+    add_surface(w, tessellated[i], static_cast<int>(i), flat[i], cos_crease, s.materials, nonmanifold);
   ::omerr().flush();  // while disabled: drops what was buffered
   ::omerr().enable();
   tessellated.clear();
@@ -290,6 +301,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   pm.vertex_rho.resize(nv);
   pm.vertex_emission.resize(nv);
   pm.vertex_surfaces.resize(nv);
+  pm.uvs.resize(nv);
   for (om_mesh::VertexHandle v : m.vertices()) {
     const int i = v.idx();
     const material& mat = s.materials[m.property(w.vertex_material, v)];
@@ -300,6 +312,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.vertex_rho[i] = mat.texture >= 0 ? mat.rho * texture_mean(s.textures[mat.texture]) : mat.rho;
     pm.vertex_emission[i] = std::numbers::pi * mat.ke;
     pm.vertex_surfaces[i] = m.property(w.vertex_surface, v);
+    pm.uvs[i] = m.property(w.vertex_uv, v);
   }
   for (om_mesh::FaceHandle f : m.faces())
     append_element(pm, face_vertices(m, f), m.property(w.face_surface, f), m.property(w.face_material, f),
@@ -350,6 +363,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
                        std::string& error, std::span<const int> times) {
   const std::size_t old_vertices = mesh.vertex_count();
   const std::size_t old_elements = mesh.element_count();
+  const bool has_uvs = mesh.uvs.size() == old_vertices;
   // Surfaces share no vertices, so a bisection never leaves its surface:
   // only the surfaces with a marked element need the half-edge structure
   // (a large scene refined in a few places stays cheap).
@@ -362,12 +376,14 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   om_mesh m;
   OpenMesh::VPropHandleT<int> parent;  // the old vertex whose surface, material and normal side it shares
   OpenMesh::VPropHandleT<vec3> normal;
+  OpenMesh::VPropHandleT<vec2> uv;
   OpenMesh::FPropHandleT<int> face_origin, face_surface, face_material, face_patch;
   OpenMesh::FPropHandleT<bool> face_split;    // bisected in this round (copied to both children)
   OpenMesh::FPropHandleT<bool> face_changed;  // bisected in any round
   OpenMesh::FPropHandleT<int> face_rounds;    // bisections still asked for
   m.add_property(parent);
   m.add_property(normal);
+  m.add_property(uv);
   m.add_property(face_origin);
   m.add_property(face_surface);
   m.add_property(face_material);
@@ -379,6 +395,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
     om_mesh::VertexHandle h = m.add_vertex(to_om(mesh.positions[v]));
     m.property(parent, h) = int(v);
     m.property(normal, h) = mesh.normals[v];
+    m.property(uv, h) = has_uvs ? mesh.uvs[v] : vec2(0.0);
   }
   std::vector<int> face_of(old_elements, -1);
   for (std::size_t e = 0; e < old_elements; ++e) {
@@ -417,6 +434,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
     om_mesh::VertexHandle mid = m.add_vertex(0.5 * (m.point(a) + m.point(b)));
     m.property(parent, mid) = m.property(parent, a);
     m.property(normal, mid) = glm::normalize(m.property(normal, a) + m.property(normal, b));
+    m.property(uv, mid) = 0.5 * (m.property(uv, a) + m.property(uv, b));
     for (int side = 0; side < 2; ++side) {
       om_mesh::FaceHandle f = m.face_handle(m.halfedge_handle(e, side));
       if (f.is_valid()) m.property(face_split, f) = m.property(face_changed, f) = true;
@@ -476,6 +494,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   out.vertex_rho = std::move(mesh.vertex_rho);
   out.vertex_emission = std::move(mesh.vertex_emission);
   out.vertex_surfaces = std::move(mesh.vertex_surfaces);
+  if (has_uvs) out.uvs = std::move(mesh.uvs);
   // Old vertices keep everything, their receive points included: their
   // radiosity was computed there. New ones copy their parent's attributes.
   for (std::size_t v = old_vertices; v < m.n_vertices(); ++v) {
@@ -487,6 +506,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
     out.vertex_rho.push_back(out.vertex_rho[p]);
     out.vertex_emission.push_back(out.vertex_emission[p]);
     out.vertex_surfaces.push_back(out.vertex_surfaces[p]);
+    if (has_uvs) out.uvs.push_back(m.property(uv, h));
   }
   // A patch that was a single element stays its element: its children
   // become patches of their own (the reference discretisation).

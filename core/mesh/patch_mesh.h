@@ -25,6 +25,10 @@ struct patch_mesh {
   std::vector<rgb> vertex_rho;       // diffuse reflectance, times the texture's mean
   std::vector<rgb> vertex_emission;  // exitance E = pi * ke
   std::vector<int> vertex_surfaces;
+  // Texture coordinates from the tessellation, for the renderer's textures
+  // (vertices of textured materials are split where uv jumps); may be
+  // empty in meshes built by hand.
+  std::vector<vec2> uvs;
 
   // Elements
   std::vector<glm::ivec3> elements;   // vertex indices, counter-clockwise seen from the front

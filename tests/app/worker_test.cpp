@@ -136,10 +136,12 @@ TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
   ASSERT_TRUE(view->mesh && view->solution && view->mesh_arrays && view->colours);
   const patch_mesh& mesh = *view->mesh;
   EXPECT_EQ(view->mesh_arrays->vertex_count, mesh.vertex_count());
-  ASSERT_EQ(view->mesh_arrays->vertices.size(), 10 * mesh.vertex_count());
+  constexpr std::size_t stride = gl::mesh_arrays::floats_per_vertex;
+  ASSERT_EQ(view->mesh_arrays->vertices.size(), stride * mesh.vertex_count());
+  EXPECT_EQ(view->mesh_arrays->source, view->source);  // for its textures and background
   ASSERT_EQ(view->mesh_arrays->indices.size(), 3 * mesh.element_count());
   EXPECT_EQ(view->mesh_arrays->indices[4], unsigned(mesh.elements[1][1]));
-  EXPECT_EQ(view->mesh_arrays->vertices[10 * 7 + 1], float(mesh.positions[7].y));
+  EXPECT_EQ(view->mesh_arrays->vertices[stride * 7 + 1], float(mesh.positions[7].y));
   ASSERT_EQ(view->colours->size(), 2 * mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     ASSERT_EQ((*view->colours)[v], glm::vec3(view->solution->radiosity[v])) << v;

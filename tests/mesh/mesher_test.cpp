@@ -205,6 +205,56 @@ TEST(Mesher, TexturesScaleReflectanceByTheirMean) {
   EXPECT_NEAR(mesh.vertex_rho[0].b, 0.5 * 0.8, 1e-12);
 }
 
+// Two unit squares side by side in one surface, whose uvs jump across the
+// shared edge (u = x on the left, x + 4 on the right): a texture seam.
+TEST(Mesher, VerticesCarryUvsAndTexturedOnesSplitAtSeams) {
+  std::size_t on_seam[2] = {0, 0};  // vertices on the shared edge: untextured, textured
+  for (const bool textured : {true, false}) {
+    scene s;
+    s.textures.push_back(texture{});
+    const int m = add_material(s, rgb(0.5));
+    if (textured) s.materials[m].texture = 0;
+    polygon_mesh pm;
+    pm.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}};
+    pm.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {5, 0}, {6, 0}, {6, 1}, {5, 1}};
+    pm.faces.push_back({{0, 1, 2, 3}, {}, {0, 1, 2, 3}, m, 0});
+    pm.faces.push_back({{1, 4, 5, 2}, {}, {4, 5, 6, 7}, m, 0});
+    s.surfaces.push_back({"two squares", "", pm});
+    patch_mesh mesh = mesh_of(s, 0.3);
+    ASSERT_EQ(mesh.uvs.size(), mesh.vertex_count());
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (mesh.positions[v].x == 1.0) ++on_seam[textured];
+    if (!textured) continue;  // welded across the seam: one uv per vertex cannot hold both
+    // Every corner's uv is its own square's map of its position, after
+    // meshing and after a round of refinement (new vertices interpolate).
+    auto expect_uvs = [](const patch_mesh& mesh) {
+      for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+        const glm::ivec3 t = mesh.elements[e];
+        const double centre = (mesh.positions[t[0]].x + mesh.positions[t[1]].x + mesh.positions[t[2]].x) / 3.0;
+        for (int k = 0; k < 3; ++k) {
+          const vec3 p = mesh.positions[t[k]];
+          const vec2 expected(centre < 1.0 ? p.x : p.x + 4.0, p.y);
+          ASSERT_NEAR(mesh.uvs[t[k]].x, expected.x, 1e-12) << "element " << e;
+          ASSERT_NEAR(mesh.uvs[t[k]].y, expected.y, 1e-12) << "element " << e;
+        }
+      }
+    };
+    expect_uvs(mesh);
+    std::vector<int> all(mesh.element_count());
+    for (std::size_t e = 0; e < all.size(); ++e) all[e] = int(e);
+    std::vector<int> origin;
+    std::string error;
+    const std::size_t before = mesh.vertex_count();
+    ASSERT_TRUE(refine_patch_mesh(mesh, all, 0.01, origin, error)) << error;
+    ASSERT_GT(mesh.vertex_count(), before);
+    ASSERT_EQ(mesh.uvs.size(), mesh.vertex_count());
+    expect_uvs(mesh);
+  }
+  // Each side keeps its own vertices along the seam only when textured.
+  EXPECT_GT(on_seam[0], 0u);
+  EXPECT_EQ(on_seam[1], 2 * on_seam[0]);
+}
+
 TEST(Mesher, PatchesAreTiledExactlyByTheirElements) {
   scene s = cornell();
   patch_mesh mesh;
