@@ -7,6 +7,7 @@ noperspective centroid in vec4 radiance_w;
 noperspective centroid in vec4 unshot_w;
 noperspective centroid in vec3 normal_w;
 noperspective centroid in vec3 position_w;
+flat in int has_back_side;           // see gouraud.vert
 smooth centroid in vec3 radiance_s;  // the fallback: see gouraud.vert
 smooth centroid in vec4 unshot_s;
 smooth centroid in vec3 normal_s;
@@ -107,6 +108,8 @@ void main() {
   fragment = displayed(radiance);
   return;
 #endif
+  // A two-sided surface seen from behind: its back, drawn in the same place, shows that side.
+  if (has_back_side != 0 && !gl_FrontFacing) discard;
   float w = 1.0 / radiance_w.w;
   vec3 vertex_radiance = radiance_w.xyz * w;
   vec3 vertex_unshot = unshot_w.xyz * w;

@@ -30,6 +30,9 @@ noperspective centroid out vec3 position_w;
 // finds its blend factor for noperspective values from a difference of
 // screen x (or y), 0 / 0 on an edge that is clipped where its two ends
 // land in the same column, and a vertex at w = 0 has no quotient at all.
+// 1 on surfaces that have a back (a two-sided material): their partner
+// draws that side, so this one's back is not drawn (the sign of element_size).
+flat out int has_back_side;
 smooth centroid out vec3 radiance_s;
 smooth centroid out vec4 unshot_s;
 smooth centroid out vec3 normal_s;
@@ -51,11 +54,12 @@ void main() {
   gl_Position = view_projection * vec4(position, 1.0);
   float inv_w = 1.0 / gl_Position.w;
   radiance_w = vec4((radiosity + reflectance * ambient) / pi, 1.0) * inv_w;
-  unshot_w = vec4(unshot / pi, element_size) * inv_w;
+  has_back_side = element_size < 0.0 ? 1 : 0;
+  unshot_w = vec4(unshot / pi, abs(element_size)) * inv_w;
   normal_w = normal * inv_w;
   position_w = position * inv_w;
   radiance_s = (radiosity + reflectance * ambient) / pi;
-  unshot_s = vec4(unshot / pi, element_size);
+  unshot_s = vec4(unshot / pi, abs(element_size));
   normal_s = normal;
   position_s = position;
 #ifdef TEXTURED

@@ -91,7 +91,14 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
       area_sum[mesh.elements[e][k]] += mesh.element_areas[e];
       ++count[mesh.elements[e][k]];
     }
-  // Static: position, normal, reflectance, element size, uv, interleaved.
+  auto has_back = [&](std::size_t v) {
+    if (!source || v >= mesh.vertex_surfaces.size()) return false;
+    const int surf = mesh.vertex_surfaces[v];
+    if (surf < 0 || std::size_t(surf) >= source->surfaces.size()) return false;
+    const surface& s = source->surfaces[std::size_t(surf)];
+    return s.back_side >= 0 || s.back_of >= 0;
+  };
+  // Static: position, normal, reflectance, element size (its sign: has_back), uv, interleaved.
   const bool has_uvs = mesh.uvs.size() == vertex_count;
   std::vector<float>& data = out.vertices;
   data.reserve(vertex_count * mesh_arrays::floats_per_vertex);
@@ -100,7 +107,8 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.normals[v][k]));
     for (int k = 0; k < 3; ++k) data.push_back(float(mesh.vertex_rho[v][k]));
     const float size = count[v] ? float(std::sqrt(area_sum[v] / count[v])) : 0.0f;
-    data.push_back(size);
+    // Negative on surfaces with a back (two-sided): the shader draws only their front.
+    data.push_back(has_back(v) ? -size : size);
     out.largest_element = std::max(out.largest_element, size);
     for (int k = 0; k < 2; ++k) data.push_back(has_uvs ? float(mesh.uvs[v][k]) : 0.0f);
   }

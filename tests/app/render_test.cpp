@@ -750,5 +750,42 @@ TEST(HeadlessImages, SkyShowsWhereNothingIsHit) {
   EXPECT_GT(std::abs(view.at(32, 0).b - view.at(32, 9).b), 0.01);
 }
 
+// A floor modelled upside down under a lamp: black in the live view when
+// one-sided; two-sided, its back shows the light as the right way up would,
+// and the one-sided front it lies on does not show through.
+TEST(HeadlessImages, TwoSidedUpsideDownFloorShowsItsLitSide) {
+  scratch_dir dir;
+  auto scene_file = [&](const std::string& name, bool upside_down, bool two_sided) {
+    const std::string floor = upside_down ? "[[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]]"
+                                          : "[[-1, 0, -1], [-1, 0, 1], [1, 0, 1], [1, 0, -1]]";
+    return dir.write(name, std::string(R"({"materials": {"white": {"rho": [0.5, 0.5, 0.5], "two_sided": )") +
+                               (two_sided ? "true" : "false") + R"(}, "lamp": {"ke": [5, 5, 5]}},
+      "surfaces": [{"polygon": )" +
+                               floor + R"(, "material": "white"},
+        {"polygon": [[-0.2, 1, -0.2], [0.2, 1, -0.2], [0.2, 1, 0.2], [-0.2, 1, 0.2]], "material": "lamp"}],
+      "camera": {"eye": [0, 2, 2], "target": [0, 0, 0], "size": [64, 64]}})");
+  };
+  double mean[3] = {0, 0, 0};
+  const std::string names[3] = {"right.json", "upside_down.json", "two_sided.json"};
+  const bool flags[3][2] = {{false, false}, {true, false}, {true, true}};
+  image pictures[3];
+  for (int i = 0; i < 3; ++i) {
+    const std::string file = scene_file(names[i], flags[i][0], flags[i][1]);
+    ASSERT_EQ(run("render " + file + " --quiet --until 1e-4 --out " + dir.path("x.pfm")), 0) << names[i];
+    std::string error;
+    ASSERT_TRUE(read_pfm(dir.path("x.pfm"), pictures[i], error)) << error;
+    for (float v : pictures[i].pixels)
+      mean[i] += v < 2.0f ? v / double(pictures[i].pixels.size()) : 0.0;  // not the lamp
+  }
+  EXPECT_LT(mean[1], 0.05 * mean[0]);  // one-sided, upside down: black
+  EXPECT_NEAR(mean[2], mean[0], 0.02 * mean[0]);
+  // Pixel by pixel, not just on average: no z-fighting with the dark front.
+  int dark = 0;
+  for (std::size_t i = 0; i < pictures[0].pixels.size(); ++i)
+    dark += pictures[0].pixels[i] > 0.05f && pictures[0].pixels[i] < 2.0f &&
+            pictures[2].pixels[i] < 0.5f * pictures[0].pixels[i];
+  EXPECT_EQ(dark, 0);
+}
+
 }  // namespace
 }  // namespace bounce
