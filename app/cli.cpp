@@ -423,6 +423,13 @@ int run_cli(int argc, char** argv) {
   view->add_option("--screenshot-every", view_extra.screenshot_every, "with --screenshots: frames between screenshots")
       ->check(CLI::Range(1, 1 << 30))
       ->needs(view_shots);
+  view->add_option("--refined-passes", view_extra.refined_passes,
+                   "with --frames: the last frame waits until refinement at rest shows this many passes")
+      ->check(CLI::Range(1, 64))
+      ->needs(view_frames);
+  view->add_flag("--no-panel-in-screenshot{false}", view_extra.screenshot_panel,
+                 "with --screenshot: save the view without the panel")
+      ->needs(view_frames);
   view->add_flag("--no-refine-at-rest{false}", view_extra.refine_at_rest,
                  "keep the live Gouraud view while the camera rests (the panel's \"refine at rest\" off)");
   view->add_flag("--paused", view_extra.start_paused, "mesh and show the scene but start the solver paused");

@@ -51,12 +51,13 @@ bool scripted_run::take_still(const still_result& still, double exposure, int fr
   return true;
 }
 
-bool scripted_run::at_end(int frame, const error_status& errors) const {
+bool scripted_run::at_end(int frame, const error_status& errors, int shown_passes) const {
   if (!active() || frame < options_.frames) return false;
   // The still's window needs a frame or two to be laid out after it arrives.
   const bool still_pending = !options_.still_path.empty() && (still_saved_frame_ < 0 || frame < still_saved_frame_ + 3);
   const bool error_pending = options_.error_plot && (!errors.ready || errors.history.empty());
-  return !still_pending && !error_pending;
+  const bool refine_pending = shown_passes < options_.refined_passes && frame < 10 * options_.frames;
+  return !still_pending && !error_pending && !refine_pending;
 }
 
 void scripted_run::report(const error_status& errors, const frame_timing& timing, int width, int height,

@@ -39,7 +39,9 @@ class scripted_run {
   bool take_still(const still_result& still, double exposure, int frame);
   // The last frame: every frame drawn, the still saved and shown, the
   // error plot measured.
-  bool at_end(int frame, const error_status& errors) const;
+  // With --refined-passes, also the refinement at rest showing that many
+  // passes (`shown_passes`), waited for up to ten times the frames asked.
+  bool at_end(int frame, const error_status& errors, int shown_passes) const;
   // After the last frame: what the error plot shows and how fast the window was.
   void report(const error_status& errors, const frame_timing& timing, int width, int height, std::size_t triangles,
               std::size_t meshed_triangles) const;

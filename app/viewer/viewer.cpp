@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -318,7 +319,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   if (refined_passes_ > 0) refined_.draw();
 
   if (script_.wants_still(frame, view.mesh != nullptr)) keys.trace_still = true;
-  const bool scripted_end = script_.at_end(frame, error_shown);
+  const bool scripted_end = script_.at_end(frame, error_shown, panel_.refine_at_rest ? refined_passes_ : INT_MAX);
   const bool shoot = act.screenshot || keys.screenshot || (scripted_end && !options_.screenshot_path.empty());
   const bool panel_in_shot = scripted_end ? options_.screenshot_panel : panel_.screenshot_with_panel;
   auto screenshot = [&] {

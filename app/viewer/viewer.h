@@ -20,6 +20,7 @@ struct viewer_options {
   std::string screenshots_dir;  // scripted run: the view (no panel) every `screenshot_every` frames, as PNGs
   int screenshot_every = 0;
   bool refine_at_rest = true;  // --no-refine-at-rest: the live Gouraud view only
+  int refined_passes = 0;      // scripted run: the last frame waits until the view shows this many passes
 };
 
 // Returns an exit code; without a display it says so and returns 1.
