@@ -37,13 +37,13 @@ bool picture_quad::init(std::string& error) {
   program_ = gl::make_program({"picture_quad.vert", vertex_shader}, {"picture_quad.frag", fragment_shader}, error);
   if (!program_) return false;
   glGenVertexArrays(1, &vao_);
-  glGenTextures(1, &texture_);
   return true;
 }
 
-void picture_quad::upload(const image& picture, double exposure) {
+void upload_srgb_texture(unsigned& texture, const image& picture, double exposure) {
+  if (!texture) glGenTextures(1, &texture);
   const std::vector<unsigned char> rows = to_srgb_rows(picture, exposure);
-  glBindTexture(GL_TEXTURE_2D, texture_);
+  glBindTexture(GL_TEXTURE_2D, texture);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, picture.width, picture.height, 0, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -51,6 +51,10 @@ void picture_quad::upload(const image& picture, double exposure) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void picture_quad::upload(const image& picture, double exposure) {
+  upload_srgb_texture(texture_, picture, exposure);
   width_ = picture.width;
   height_ = picture.height;
 }

@@ -9,6 +9,10 @@
 
 namespace bounce {
 
+// Uploads `picture` (linear radiance) into `texture` (made if 0) as
+// radiance x exposure through the sRGB curve, 8 bits, bilinear, clamped.
+void upload_srgb_texture(unsigned& texture, const image& picture, double exposure);
+
 class picture_quad {
  public:
   picture_quad() = default;

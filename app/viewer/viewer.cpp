@@ -51,20 +51,6 @@ double milliseconds_since(clock_type::time_point start) {
   return 1000.0 * std::chrono::duration<double>(clock_type::now() - start).count();
 }
 
-// The finished still as an sRGB texture for the panel's image window.
-void upload_still(unsigned& texture, const image& picture, double exposure) {
-  if (!texture) glGenTextures(1, &texture);
-  const std::vector<unsigned char> rows = to_srgb_rows(picture, exposure);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, picture.width, picture.height, 0, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glBindTexture(GL_TEXTURE_2D, 0);
-}
-
 trace_params still_params(const still_settings& settings) {
   trace_params p;
   p.method = settings.integrator == 1 ? integrator::path : integrator::whitted;
@@ -275,7 +261,7 @@ void viewer_app::take_still(int frame) {
       panel_.show_still = true;
       if (panel_.message == tracing_message) panel_.message.clear();
     }
-    upload_still(still_shown_.texture, result->picture, panel_.display.exposure);
+    upload_srgb_texture(still_shown_.texture, result->picture, panel_.display.exposure);  // the panel's still window
     still_shown_.width = result->picture.width;
     still_shown_.height = result->picture.height;
     still_shown_.summary = result->summary;

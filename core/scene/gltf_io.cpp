@@ -33,16 +33,6 @@ constexpr std::size_t max_accessor_elements = 20'000'000;
 constexpr int max_node_depth = 1000;
 constexpr double max_colour_channel = 2.0;  // as the OBJ reader: above, not a reflectance
 
-std::string fmt(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
-std::string fmt(const rgb& c) {
-  return c.r == c.g && c.g == c.b ? fmt(c.r) : fmt(c.r) + " " + fmt(c.g) + " " + fmt(c.b);
-}
-
 std::string indexed(const char* list, std::size_t i) {
   return std::string(list) + "[" + std::to_string(i) + "]";
 }
@@ -253,7 +243,7 @@ struct gltf_reader {
         const double target = component(indices + std::size_t(k) * index_size, sp.indices.componentType, false);
         if (target >= double(a.count))
           fail(sat + ".indices",
-               "index " + fmt(target) + " is out of range (" + std::to_string(a.count) + " elements)");
+               "index " + format_value(target) + " is out of range (" + std::to_string(a.count) + " elements)");
         for (int c = 0; c < components; ++c)
           out[std::size_t(target) * components + c] =
               component(values + (std::size_t(k) * components + c) * component_size, a.componentType, a.normalized);
@@ -275,10 +265,11 @@ struct gltf_reader {
     for (std::size_t i = 0; i < n; ++i)
       for (int c = 0; c < N; ++c) {
         const double v = flat[i * N + c];
-        if (!std::isfinite(v)) fail(at, "element " + std::to_string(i) + " is not a finite number (" + fmt(v) + ")");
+        if (!std::isfinite(v))
+          fail(at, "element " + std::to_string(i) + " is not a finite number (" + format_value(v) + ")");
         if (std::abs(v) > max_file_number)
-          fail(at, "element " + std::to_string(i) + " is out of range (" + fmt(v) + "; the limit is " +
-                       fmt(max_file_number) + " in magnitude)");
+          fail(at, "element " + std::to_string(i) + " is out of range (" + format_value(v) + "; the limit is " +
+                       format_value(max_file_number) + " in magnitude)");
         out[i][c] = v;
       }
     return out;
@@ -357,7 +348,7 @@ struct gltf_reader {
       rgb c(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
       if (!std::isfinite(c.r + c.g + c.b) || glm::any(glm::lessThan(c, rgb(0.0))) ||
           glm::any(glm::greaterThan(c, rgb(max_colour_channel))))
-        fail(who, "baseColorFactor " + fmt(c) + " is not a reflectance (channels go from 0 to 1)");
+        fail(who, "baseColorFactor " + format_value(c) + " is not a reflectance (channels go from 0 to 1)");
       // Channels of 1 or more are clamped as the OBJ reader clamps Kd 1 (glTF's default base colour is 1).
       bool clamp = false;
       for (int i = 0; i < 3; ++i)
@@ -370,7 +361,7 @@ struct gltf_reader {
       if (g.emissiveFactor.size() != 3) fail(who, "emissiveFactor needs 3 numbers");
       rgb ke(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]);
       if (!std::isfinite(ke.r + ke.g + ke.b) || glm::any(glm::lessThan(ke, rgb(0.0))))
-        fail(who, "emissiveFactor " + fmt(ke) + " must be finite and not negative");
+        fail(who, "emissiveFactor " + format_value(ke) + " must be finite and not negative");
       if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end()) {
         const tinygltf::Value& strength = it->second.Get("emissiveStrength");
         if (it->second.Has("emissiveStrength")) {
@@ -482,7 +473,7 @@ struct gltf_reader {
         for (std::size_t i = 0; i < flat.size(); ++i) {
           if (flat[i] >= double(count))
             fail(iat + " (accessor " + std::to_string(prim.indices) + ")",
-                 "element " + std::to_string(i) + " is vertex " + fmt(flat[i]) + ", out of range (" +
+                 "element " + std::to_string(i) + " is vertex " + format_value(flat[i]) + ", out of range (" +
                      std::to_string(count) + " vertices)");
           indices.push_back(int(flat[i]));
         }
@@ -514,8 +505,8 @@ struct gltf_reader {
     auto finite = [&](const std::vector<double>& v, const char* what) {
       for (double x : v)
         if (!std::isfinite(x) || std::abs(x) > max_file_number)
-          fail(where, std::string(what) + " holds " + fmt(x) + " (numbers are limited to " + fmt(max_file_number) +
-                          " in magnitude)");
+          fail(where, std::string(what) + " holds " + format_value(x) + " (numbers are limited to " +
+                          format_value(max_file_number) + " in magnitude)");
     };
     if (!n.matrix.empty()) {
       if (n.matrix.size() != 16) fail(where, "matrix needs 16 numbers");
@@ -561,8 +552,9 @@ struct gltf_reader {
       for (const vec3& p : d.positions) {
         const vec3 q = vec3(world * glm::dvec4(p, 1.0));
         if (!std::isfinite(q.x + q.y + q.z) || glm::any(glm::greaterThan(glm::abs(q), vec3(max_file_number))))
-          fail(where, "a vertex of mesh " + std::to_string(mesh_index) + " lands at (" + fmt(q.x) + ", " + fmt(q.y) +
-                          ", " + fmt(q.z) + ") after the node transforms, beyond " + fmt(max_file_number));
+          fail(where, "a vertex of mesh " + std::to_string(mesh_index) + " lands at (" + format_value(q.x) + ", " +
+                          format_value(q.y) + ", " + format_value(q.z) + ") after the node transforms, beyond " +
+                          format_value(max_file_number));
         pm.positions.push_back(q);
       }
       const bool normals = keep_normals && !d.normals.empty();
@@ -661,7 +653,7 @@ struct gltf_reader {
     if (!clamped.empty())
       result.warnings.push_back(path + ": " + first_clamped +
                                 (clamped.size() > 1 ? " and " + std::to_string(clamped.size() - 1) + " more" : "") +
-                                ": baseColorFactor channels of 1 or more clamped to " + fmt(max_reflectance) +
+                                ": baseColorFactor channels of 1 or more clamped to " + format_value(max_reflectance) +
                                 " (a reflectance of 1 or more would create energy)");
     if (result.surfaces.empty()) {
       std::string what = "no triangles in the scene: nothing with an area to light";

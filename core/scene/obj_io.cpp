@@ -27,16 +27,6 @@ constexpr std::size_t max_obj_elements = 20'000'000;
 constexpr double max_colour_channel = 2.0;
 constexpr const char* default_material_text = "the grey default material (rho 0.5)";
 
-std::string fmt(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
-std::string fmt(const rgb& c) {
-  return c.r == c.g && c.g == c.b ? fmt(c.r) : fmt(c.r) + " " + fmt(c.g) + " " + fmt(c.b);
-}
-
 std::string resolve(const std::string& base_file, const std::string& relative) {
   std::filesystem::path rel(relative);
   if (rel.is_absolute()) return relative;
@@ -125,13 +115,14 @@ double parse_number(std::string_view token, const std::string& where) {
   double value = 0.0;
   auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (ec == std::errc::result_out_of_range)
-    throw load_error(where + ": '" + std::string(token) + "' is out of range (limit " + fmt(max_file_number) + ")");
+    throw load_error(where + ": '" + std::string(token) + "' is out of range (limit " + format_value(max_file_number) +
+                     ")");
   if (ec != std::errc() || end != digits.data() + digits.size())
     throw load_error(where + ": '" + std::string(token) + "' is not a number");
   if (!std::isfinite(value)) throw load_error(where + ": '" + std::string(token) + "' is not a finite number");
   if (std::abs(value) > max_file_number)
     throw load_error(where + ": " + std::string(token) +
-                     " is out of range (numbers in OBJ and MTL files are limited to " + fmt(max_file_number) +
+                     " is out of range (numbers in OBJ and MTL files are limited to " + format_value(max_file_number) +
                      " in magnitude)");
   return value;
 }
@@ -162,7 +153,7 @@ rgb parse_colour(const std::vector<std::string_view>& tokens, const std::string&
     c = rgb(v[0], v[1], v[2]);
   }
   if (glm::any(glm::lessThan(c, rgb(0.0))))
-    throw load_error(where + ": '" + std::string(tokens[0]) + "' colour " + fmt(c) + " is negative");
+    throw load_error(where + ": '" + std::string(tokens[0]) + "' colour " + format_value(c) + " is negative");
   return c;
 }
 
@@ -171,7 +162,7 @@ rgb parse_colour(const std::vector<std::string_view>& tokens, const std::string&
 // Returns whether it clamped.
 bool clamp_reflectance(rgb& c, const std::string& what, const std::string& where) {
   if (glm::any(glm::greaterThan(c, rgb(max_colour_channel))))
-    throw load_error(where + ": " + what + " " + fmt(c) + " is not a reflectance (channels go from 0 to 1)");
+    throw load_error(where + ": " + what + " " + format_value(c) + " is not a reflectance (channels go from 0 to 1)");
   bool clamped = false;
   for (int i = 0; i < 3; ++i)
     if (c[i] >= 1.0) {
@@ -268,12 +259,13 @@ material finish_material(const mtl_block& b, const std::string& path, std::vecto
   if (b.illum >= 3) m.kr = b.ks;
   if (b.illum == 5 || b.illum == 7) m.fresnel = true;
   if (b.illum >= 3 && glm::any(glm::greaterThan(m.kr, rgb(max_colour_channel))))
-    throw load_error(at(path, b.ks_line) + ": Ks " + fmt(b.ks) + " of " + who + " (a mirror reflectance with illum " +
-                     std::to_string(b.illum) + ") is not a reflectance (channels go from 0 to 1)");
+    throw load_error(at(path, b.ks_line) + ": Ks " + format_value(b.ks) + " of " + who +
+                     " (a mirror reflectance with illum " + std::to_string(b.illum) +
+                     ") is not a reflectance (channels go from 0 to 1)");
   const rgb kd = m.rho;
   if (clamp_reflectance(m.rho, "Kd", at(path, b.kd_line)))
-    warnings.push_back(at(path, b.kd_line) + ": Kd " + fmt(kd) + " of " + who + " clamped to " + fmt(m.rho) +
-                       " (a reflectance of 1 or more would create energy)");
+    warnings.push_back(at(path, b.kd_line) + ": Kd " + format_value(kd) + " of " + who + " clamped to " +
+                       format_value(m.rho) + " (a reflectance of 1 or more would create energy)");
   m.rho *= b.dissolve;
   m.kr *= b.dissolve;
   m.kt = rgb(1.0 - b.dissolve);
@@ -290,14 +282,15 @@ material finish_material(const mtl_block& b, const std::string& path, std::vecto
     std::string lines = "Kd at line " + std::to_string(b.kd_line);
     if (b.ks_line) lines += ", Ks at line " + std::to_string(b.ks_line) + " with illum " + std::to_string(b.illum);
     if (b.d_line) lines += ", " + b.d_statement + " at line " + std::to_string(b.d_line);
-    warnings.push_back(at(path, b.line) + ": " + who + " reflects more than it receives (rho + kr + kt = " + fmt(most) +
-                       "; " + lines + "); all three scaled by " + fmt(scale) + " to sum to " + fmt(max_reflectance));
+    warnings.push_back(at(path, b.line) + ": " + who +
+                       " reflects more than it receives (rho + kr + kt = " + format_value(most) + "; " + lines +
+                       "); all three scaled by " + format_value(scale) + " to sum to " + format_value(max_reflectance));
   }
   if (m.ior <= 0.0) {
     if (m.kt != rgb(0.0) || m.fresnel)
-      throw load_error(at(path, b.ni_line) + ": Ni " + fmt(m.ior) + " of " + who +
+      throw load_error(at(path, b.ni_line) + ": Ni " + format_value(m.ior) + " of " + who +
                        " is not a refractive index (it must be positive for a transparent or Fresnel material)");
-    warnings.push_back(at(path, b.ni_line) + ": Ni " + fmt(m.ior) + " of " + who +
+    warnings.push_back(at(path, b.ni_line) + ": Ni " + format_value(m.ior) + " of " + who +
                        " is not a refractive index; ignored (the material is opaque)");
     m.ior = 1.0;
   }
@@ -486,7 +479,8 @@ void read_obj_statements(const std::string& path, const std::string_view text, s
       colours.emplace_back();
       if (v.size() == 6) {
         rgb c(v[3], v[4], v[5]);
-        if (glm::any(glm::lessThan(c, rgb(0.0)))) throw load_error(here + ": vertex colour " + fmt(c) + " is negative");
+        if (glm::any(glm::lessThan(c, rgb(0.0))))
+          throw load_error(here + ": vertex colour " + format_value(c) + " is negative");
         if (clamp_reflectance(c, "vertex colour", here) && !first_clamped_colour) first_clamped_colour = number;
         colours.back() = c;
       }
@@ -627,7 +621,7 @@ void read_obj_statements(const std::string& path, const std::string_view text, s
                               ": zero-length normals ('vn 0 0 0'); corners using them get their face's normal");
   if (first_clamped_colour)
     result.warnings.push_back(at(path, first_clamped_colour) + ": vertex colour channels of 1 or more clamped to " +
-                              fmt(max_reflectance) + " (a reflectance of 1 or more would create energy)");
+                              format_value(max_reflectance) + " (a reflectance of 1 or more would create energy)");
   if (first_coloured_face)
     result.warnings.push_back(at(path, first_coloured_face) +
                               ": faces without a material take their vertex colours (mean of the corners) as rho");
@@ -691,6 +685,17 @@ obj_read_result read_obj(const std::string& path, std::vector<material>& materia
     e.warnings.insert(e.warnings.begin(), result.warnings.begin(), result.warnings.end());
     throw;
   }
+}
+
+std::string format_value(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+std::string format_value(const rgb& c) {
+  return c.r == c.g && c.g == c.b ? format_value(c.r)
+                                  : format_value(c.r) + " " + format_value(c.g) + " " + format_value(c.b);
 }
 
 }  // namespace bounce

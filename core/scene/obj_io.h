@@ -52,4 +52,8 @@ texture read_image_texture(const std::string& path, const std::string& name, con
 texture decode_image_texture(std::string_view bytes, const std::string& name, const std::string& where,
                              const std::string& what);
 
+// Numbers in the model readers' messages: %g, and a grey colour as one number.
+std::string format_value(double v);
+std::string format_value(const rgb& c);
+
 }  // namespace bounce
