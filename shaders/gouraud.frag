@@ -1,8 +1,9 @@
 #version 330 core
-// Centroid, perspective-corrected by hand: see gouraud.vert. Compiled three
-// times (mesh_renderer.cpp): as it stands for untextured materials, with
-// TEXTURED for textured ones (so that untextured pixels pay nothing for
-// textures), and with BACKGROUND for what rays that miss the scene see.
+// Centroid, perspective-corrected by hand: see gouraud.vert. Compiled four
+// times (mesh_renderer.cpp): as it stands for plain materials, with
+// TEXTURED for textured ones (so that plain pixels pay nothing for
+// textures), with TEXTURED and SPECULAR for mirrors and glass, and with
+// BACKGROUND for what rays that miss the scene see.
 noperspective centroid in vec4 radiance_w;
 noperspective centroid in vec4 unshot_w;
 noperspective centroid in vec3 normal_w;
@@ -47,6 +48,28 @@ uniform vec3 inverse_mean;    // 1 / mean(texture), 0 where the mean is 0
 uniform vec3 emitted;         // the material's ke: emission is not textured
 #endif
 
+#ifdef SPECULAR
+// Mirrors and glass, approximated (docs/viewer.md, "Mirrors and glass"):
+// the scene as seen from the surface's centre, in a cube map, looked up
+// where the reflected or refracted ray meets the scene's bounding box.
+uniform samplerCube environment;  // linear radiance
+uniform vec3 scene_min;
+uniform vec3 scene_max;
+uniform vec3 probe_centre;
+uniform float probe_radius;  // the surface's bounding sphere: its exit for solid glass
+uniform int probe_thin;      // 1: a sheet, light goes straight through
+uniform vec3 mirror_weight;    // kr
+uniform vec3 transmit_weight;  // kt
+uniform float ior;
+uniform int fresnel_on;
+// The point lights' Phong highlights (the still's, without its shadow rays).
+uniform int light_count;
+uniform vec3 light_position[4];
+uniform vec3 light_intensity[4];  // W/sr
+uniform vec3 specular_colour;
+uniform float shininess;
+#endif
+
 out vec4 fragment;
 
 vec3 srgb(vec3 linear) {
@@ -85,6 +108,87 @@ vec3 checker(vec2 uv) {
     t = 0.5 - 0.5 * s.x * s.y;
   }
   return mix(checker0, checker1, t);
+}
+#endif
+
+#ifdef SPECULAR
+// The environment along d from p: the direction from the probe's centre to
+// where the ray meets the scene's box (exact for the box's own walls, a
+// parallax error for what stands inside it; plain d when p is outside).
+vec3 environment_along(vec3 p, vec3 d) {
+  vec3 safe = mix(vec3(1e-8), d, greaterThan(abs(d), vec3(1e-8)));
+  vec3 far_side = max((scene_max - p) / safe, (scene_min - p) / safe);
+  float t = min(min(far_side.x, far_side.y), far_side.z);
+  vec3 lookup = d;
+  if (t > 0.0 && !isinf(t) && !isnan(t)) {
+    vec3 from_centre = p + t * d - probe_centre;
+    if (dot(from_centre, from_centre) > 0.0) lookup = from_centre;
+  }
+  return texture(environment, lookup).rgb;
+}
+
+// core/trace/optics.cpp's fresnel_dielectric.
+float fresnel(float cos_incident, float n1, float n2) {
+  float cos_i = clamp(abs(cos_incident), 0.0, 1.0);
+  float sin_t = n1 / n2 * sqrt(max(0.0, 1.0 - cos_i * cos_i));
+  if (sin_t >= 1.0) return 1.0;
+  float cos_t = sqrt(max(0.0, 1.0 - sin_t * sin_t));
+  float parallel = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+  float perpendicular = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+  return 0.5 * (parallel * parallel + perpendicular * perpendicular);
+}
+
+// What arrives through glass entered at p along r (refracted): a sheet
+// passes the view ray's own direction on; a solid is left where r meets
+// its bounding sphere, refracted out there (exact for a glass sphere but
+// for the light reflected inside, which is left out).
+vec3 transmitted(vec3 p, vec3 view, vec3 r, bool entering) {
+  if (probe_thin != 0) return environment_along(p, view);
+  if (!entering) return environment_along(p, r);
+  vec3 oc = p - probe_centre;
+  float b = dot(oc, r);
+  float t = -b + sqrt(max(b * b - (dot(oc, oc) - probe_radius * probe_radius), 0.0));
+  vec3 q = p + max(t, 0.0) * r;
+  vec3 m = normalize(q - probe_centre);  // out of the solid
+  vec3 out_dir = refract(r, -m, ior);
+  if (dot(out_dir, out_dir) == 0.0) out_dir = reflect(r, -m);  // total internal reflection: once more inside, roughly
+  return environment_along(q, out_dir);
+}
+
+// The Whitted tracer's specular terms (ray_tracer.cpp, describe and
+// whitted): kr times the reflection, kt times the refraction, Fresnel
+// moving weight from kt to kr where asked.
+vec3 specular_radiance(vec3 p, vec3 normal) {
+  vec3 view = normalize(p - eye);
+  vec3 n = normalize(normal);
+  bool front = dot(view, n) < 0.0;
+  if (!front) n = -n;
+  float n1 = front ? 1.0 : ior, n2 = front ? ior : 1.0;
+  vec3 kr = mirror_weight, kt = transmit_weight;
+  vec3 radiance = vec3(0.0);
+  if (any(greaterThan(kt, vec3(0.0)))) {
+    vec3 r = refract(view, n, n1 / n2);
+    if (dot(r, r) == 0.0) {  // total internal reflection
+      kr += kt;
+    } else {
+      float f = fresnel_on != 0 ? fresnel(-dot(view, n), n1, n2) : 0.0;
+      kr += f * kt;
+      radiance += (1.0 - f) * kt * transmitted(p, view, r, front);
+    }
+  }
+  radiance += kr * environment_along(p, reflect(view, n));
+  if (shininess > 0.0) {
+    for (int i = 0; i < light_count; ++i) {  // ray_tracer.cpp's phong(), front side only
+      vec3 to = light_position[i] - p;
+      float d2 = dot(to, to);
+      vec3 l = to / sqrt(d2);
+      float cos_x = dot(n, l), c = dot(reflect(-l, n), -view);
+      if (!front || cos_x <= 0.0 || c <= 0.0) continue;
+      radiance += specular_colour * (shininess + 2.0) / (2.0 * 3.14159265358979) * pow(c, shininess) *
+                  light_intensity[i] * cos_x / d2;
+    }
+  }
+  return radiance;
 }
 #endif
 
@@ -136,6 +240,9 @@ void main() {
   } else if (texture_mode == 2) {
     vertex_radiance = emitted + (vertex_radiance - emitted) * checker(uv) * inverse_mean;
   }
+#endif
+#ifdef SPECULAR
+  vertex_radiance += specular_radiance(world_position, world_normal);
 #endif
   if (highlight_back_faces != 0 && dot(world_normal, eye - world_position) < 0.0) {
     fragment = vec4(1.0, 0.0, 1.0, 1.0);  // magenta: a flipped normal faces the camera

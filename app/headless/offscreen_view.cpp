@@ -56,6 +56,7 @@ offscreen_view::~offscreen_view() {
 
 void offscreen_view::draw_into(target& t, const glm::mat4& view_projection, const glm::vec3& eye,
                                const gl::display_settings& settings, const std::function<void()>& overlay) {
+  renderer_->refresh_reflections();  // a picture for a file: the mirrors see the solution it shows
   glBindFramebuffer(GL_FRAMEBUFFER, t.msaa_fbo);
   glViewport(0, 0, width_, height_);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -57,6 +58,7 @@ mesh_renderer::~mesh_renderer() {
   if (program_) glDeleteProgram(program_);
   if (wire_program_) glDeleteProgram(wire_program_);
   if (textured_program_) glDeleteProgram(textured_program_);
+  if (specular_program_) glDeleteProgram(specular_program_);
   if (background_program_) glDeleteProgram(background_program_);
 }
 
@@ -67,6 +69,9 @@ bool mesh_renderer::init(std::string& error) {
   if (!program_) return false;
   textured_program_ = make_program(with_define(vertex, "TEXTURED"), with_define(fragment, "TEXTURED"), error);
   if (!textured_program_) return false;
+  specular_program_ = make_program(with_define(with_define(vertex, "TEXTURED"), "SPECULAR"),
+                                   with_define(with_define(fragment, "TEXTURED"), "SPECULAR"), error);
+  if (!specular_program_) return false;
   background_program_ = make_program(with_define(vertex, "BACKGROUND"), with_define(fragment, "BACKGROUND"), error);
   if (!background_program_) return false;
   wire_program_ = make_program(vertex, shader_file("wire.frag"), error);
@@ -81,11 +86,15 @@ bool mesh_renderer::init(std::string& error) {
 
 mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source) {
   mesh_arrays out;
-  const std::size_t vertex_count = mesh.vertex_count();
+  const std::size_t solution_count = mesh.vertex_count();
+  const curved_display curved = make_curved_display(mesh, source.get());
+  const std::size_t vertex_count = solution_count + curved.positions.size();
   out.vertex_count = vertex_count;
+  out.solution_vertex_count = solution_count;
+  out.blends = curved.blends;
   // Element size seen from a vertex: the square root of its elements' mean area.
-  std::vector<double> area_sum(vertex_count, 0.0);
-  std::vector<int> count(vertex_count, 0);
+  std::vector<double> area_sum(solution_count, 0.0);
+  std::vector<int> count(solution_count, 0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     for (int k = 0; k < 3; ++k) {
       area_sum[mesh.elements[e][k]] += mesh.element_areas[e];
@@ -99,48 +108,111 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
     return s.back_side >= 0 || s.back_of >= 0;
   };
   // Static: position, normal, reflectance, element size (its sign: has_back), uv, interleaved.
-  const bool has_uvs = mesh.uvs.size() == vertex_count;
+  const bool has_uvs = mesh.uvs.size() == solution_count;
   std::vector<float>& data = out.vertices;
   data.reserve(vertex_count * mesh_arrays::floats_per_vertex);
-  for (std::size_t v = 0; v < vertex_count; ++v) {
-    for (int k = 0; k < 3; ++k) data.push_back(float(mesh.positions[v][k]));
-    for (int k = 0; k < 3; ++k) data.push_back(float(mesh.normals[v][k]));
-    for (int k = 0; k < 3; ++k) data.push_back(float(mesh.vertex_rho[v][k]));
+  auto push = [&data](const auto& value, int n) {
+    for (int k = 0; k < n; ++k) data.push_back(float(value[k]));
+  };
+  std::vector<float> sizes(solution_count);
+  for (std::size_t v = 0; v < solution_count; ++v) {
+    push(mesh.positions[v], 3);
+    push(mesh.normals[v], 3);
+    push(mesh.vertex_rho[v], 3);
     const float size = count[v] ? float(std::sqrt(area_sum[v] / count[v])) : 0.0f;
     // Negative on surfaces with a back (two-sided): the shader draws only their front.
-    data.push_back(has_back(v) ? -size : size);
+    sizes[v] = has_back(v) ? -size : size;
+    data.push_back(sizes[v]);
     out.largest_element = std::max(out.largest_element, size);
-    for (int k = 0; k < 2; ++k) data.push_back(has_uvs ? float(mesh.uvs[v][k]) : 0.0f);
+    push(has_uvs ? glm::vec2(mesh.uvs[v]) : glm::vec2(0.0f), 2);
   }
-  // Untextured elements in the mesh's order (one draw, as before textures),
-  // then each textured material's elements (a draw each, its texture bound).
-  auto texture_of = [&](int material) {
-    if (!source || material < 0 || std::size_t(material) >= source->materials.size()) return -1;
-    const int t = source->materials[std::size_t(material)].texture;
-    return t >= 0 && std::size_t(t) < source->textures.size() ? t : -1;
-  };
+  for (std::size_t x = 0; x < curved.positions.size(); ++x) {
+    const vertex_blend& b = curved.blends[x];
+    auto blend = [&](const auto& values) {
+      return double(b.wa) * values[b.a] + double(b.wb) * values[b.b] + double(b.wc) * values[b.c];
+    };
+    push(curved.positions[x], 3);
+    push(curved.normals[x], 3);
+    push(blend(mesh.vertex_rho), 3);
+    data.push_back(b.wa * sizes[b.a] + b.wb * sizes[b.b] + b.wc * sizes[b.c]);
+    push(has_uvs ? glm::vec2(blend(mesh.uvs)) : glm::vec2(0.0f), 2);
+  }
+  out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
+  out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
+  for (const vec3& p : mesh.positions) {
+    out.bounds_min = glm::min(out.bounds_min, glm::vec3(p));
+    out.bounds_max = glm::max(out.bounds_max, glm::vec3(p));
+  }
+  if (solution_count == 0) out.bounds_min = out.bounds_max = glm::vec3(0.0f);
+
+  // Plain elements in the mesh's order (one draw), then a run for each
+  // textured material and each specular surface (a draw each, with its
+  // texture or its reflection probe bound).
   const bool has_materials = mesh.element_materials.size() == mesh.element_count();
-  std::map<int, std::vector<std::size_t>> textured;  // material -> its elements
-  out.indices.reserve(mesh.element_count() * 3);
+  const bool has_surfaces = mesh.element_surfaces.size() == mesh.element_count();
+  auto material_of = [&](std::size_t e) -> const material* {
+    const int m = has_materials ? mesh.element_materials[e] : -1;
+    return source && m >= 0 && std::size_t(m) < source->materials.size() ? &source->materials[std::size_t(m)] : nullptr;
+  };
+  auto texture_of = [&](const material* m) {
+    return m && m->texture >= 0 && std::size_t(m->texture) < source->textures.size() ? m->texture : -1;
+  };
+  auto specular = [](const material* m) { return m && glm::any(glm::greaterThan(glm::max(m->kr, m->kt), rgb(0.0))); };
+  // (material, surface if specular else -1) -> its elements
+  std::map<std::pair<int, int>, std::vector<std::size_t>> runs;
+  auto emit = [&](std::size_t e) {
+    for (std::size_t t = 3 * curved.first[e]; t < 3 * curved.first[e + 1]; ++t)
+      out.indices.push_back(curved.triangles[t]);
+  };
+  out.indices.reserve(curved.triangles.size());
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const int material = has_materials ? mesh.element_materials[e] : -1;
-    if (texture_of(material) >= 0) {
-      textured[material].push_back(e);
+    const material* m = material_of(e);
+    if (texture_of(m) < 0 && !specular(m)) {
+      emit(e);
       continue;
     }
-    for (int k = 0; k < 3; ++k) out.indices.push_back(unsigned(mesh.elements[e][k]));
+    const int surface = specular(m) && has_surfaces ? mesh.element_surfaces[e] : -1;
+    runs[{mesh.element_materials[e], surface}].push_back(e);
   }
-  out.untextured_count = out.indices.size();
-  for (const auto& [material, elements] : textured) {
-    textured_run run;
-    run.texture = texture_of(material);
-    run.emitted = glm::vec3(source->materials[std::size_t(material)].ke);
+  out.plain_count = out.indices.size();
+  for (const auto& [key, elements] : runs) {
+    const material& m = source->materials[std::size_t(key.first)];
+    material_run run;
+    run.texture = texture_of(&m);
+    run.emitted = glm::vec3(m.ke);
     run.first = out.indices.size();
-    for (std::size_t e : elements)
-      for (int k = 0; k < 3; ++k) out.indices.push_back(unsigned(mesh.elements[e][k]));
+    for (std::size_t e : elements) emit(e);
     run.count = out.indices.size() - run.first;
-    out.textured.push_back(run);
+    if (specular(&m)) {
+      specular_surface probe;
+      probe.surface = key.second;
+      probe.kr = glm::vec3(m.kr);
+      probe.kt = glm::vec3(m.kt);
+      probe.ior = float(m.ior);
+      probe.fresnel = m.fresnel;
+      probe.specular = glm::vec3(m.specular);
+      probe.shininess = float(m.shininess);
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (std::size_t i = run.first; i < out.indices.size(); ++i) {
+        const float* p = &data[std::size_t(out.indices[i]) * mesh_arrays::floats_per_vertex];
+        lo = glm::min(lo, glm::vec3(p[0], p[1], p[2]));
+        hi = glm::max(hi, glm::vec3(p[0], p[1], p[2]));
+      }
+      probe.centre = 0.5f * (lo + hi);
+      for (std::size_t i = run.first; i < out.indices.size(); ++i) {
+        const float* p = &data[std::size_t(out.indices[i]) * mesh_arrays::floats_per_vertex];
+        probe.radius = std::max(probe.radius, glm::length(glm::vec3(p[0], p[1], p[2]) - probe.centre));
+      }
+      // A sheet: thinner than a twentieth of its extent (a pane, a flat mirror).
+      const glm::vec3 extent = hi - lo;
+      probe.thin = std::min({extent.x, extent.y, extent.z}) <= 0.05f * std::max({extent.x, extent.y, extent.z});
+      run.probe = int(out.probes.size());
+      out.probes.push_back(probe);
+    }
+    out.runs.push_back(run);
   }
+  out.outline_first = out.indices.size();
+  out.indices.insert(out.indices.end(), curved.outline.begin(), curved.outline.end());
   out.source = std::move(source);
   return out;
 }
@@ -208,13 +280,24 @@ void mesh_renderer::upload_textures(const std::shared_ptr<const scene>& source) 
 
 void mesh_renderer::upload(const mesh_arrays& arrays) {
   vertex_count_ = arrays.vertex_count;
+  solution_vertex_count_ = arrays.solution_vertex_count;
+  blends_ = arrays.blends;
   largest_element_ = arrays.largest_element;
-  untextured_count_ = arrays.untextured_count;
-  textured_ = arrays.textured;
+  plain_count_ = arrays.plain_count;
+  outline_first_ = arrays.outline_first;
+  outline_count_ = arrays.indices.size() - arrays.outline_first;
+  runs_ = arrays.runs;
+  probe_surfaces_ = arrays.probes;
+  bounds_min_ = arrays.bounds_min;
+  bounds_max_ = arrays.bounds_max;
+  // 128 texels a face: a mirror sphere filling a quarter of the view shows
+  // its surroundings at about the view's resolution.
+  probes_.resize(probe_surfaces_.size(), 128);
+  stale_faces_ = 2 * 6 * probe_surfaces_.size();
+  next_face_ = 0;
   upload_textures(arrays.source);
   const std::vector<float>& data = arrays.vertices;
   const std::vector<unsigned int>& indices = arrays.indices;
-  index_count_ = int(indices.size());
 
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, static_buffer_);
@@ -257,20 +340,57 @@ std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot) {
 }
 
 void mesh_renderer::update(const std::vector<glm::vec3>& colours, const glm::vec3& ambient) {
-  if (colours.size() != 2 * vertex_count_) return;  // a solution of another mesh: nothing to show
+  const std::size_t n = solution_vertex_count_;
+  if (colours.size() != 2 * n) return;  // a solution of another mesh: nothing to show
+  const std::vector<glm::vec3>* shown = &colours;
+  if (vertex_count_ > n) {
+    // The finer display of curved surfaces: its extra vertices blend the solution's.
+    const std::size_t extra = vertex_count_ - n;
+    expanded_.resize(2 * vertex_count_);
+    for (int block = 0; block < 2; ++block) {
+      const glm::vec3* in = colours.data() + block * n;
+      glm::vec3* out = expanded_.data() + block * vertex_count_;
+      std::copy(in, in + n, out);
+      for (std::size_t x = 0; x < extra; ++x) {
+        const vertex_blend& b = blends_[x];
+        out[n + x] = b.wa * in[b.a] + b.wb * in[b.b] + b.wc * in[b.c];
+      }
+    }
+    shown = &expanded_;
+  }
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(colours.size() * sizeof(glm::vec3)), colours.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(shown->size() * sizeof(glm::vec3)), shown->data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   ambient_ = ambient;
+  stale_faces_ = 2 * 6 * probe_surfaces_.size();
 }
 
-void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,
-                         const display_settings& settings) const {
+bool mesh_renderer::refresh_reflections(std::size_t max_faces) {
+  if (stale_faces_ == 0 || probe_surfaces_.empty()) return false;
+  const float diagonal = std::max(glm::length(bounds_max_ - bounds_min_), 1e-6f);
+  display_settings linear;  // what the probes hold: radiance, unscaled
+  linear.curve = tone_curve::linear;
+  const std::size_t faces = 6 * probe_surfaces_.size();
+  for (std::size_t done = 0; done < max_faces && stale_faces_ > 0; ++done, --stale_faces_) {
+    // The cursor goes on round the faces across updates, so that a solver
+    // that updates every few frames still has every face refreshed in turn.
+    const std::size_t next = next_face_++ % faces;
+    const std::size_t probe = next / 6;
+    const glm::vec3 centre = probe_surfaces_[probe].centre;
+    probes_.render_face(
+        probe, int(next % 6), centre, 1e-4f * diagonal, 4.0f * diagonal,
+        [&](const glm::mat4& view_projection) { draw_scene(view_projection, centre, linear, int(probe)); });
+  }
+  return true;
+}
+
+void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings,
+                               int hidden) const {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // rooms are seen from inside; back faces are shown (or highlighted)
   glBindVertexArray(vao_);
   const glm::vec3 ambient = settings.ambient ? ambient_ : glm::vec3(0.0f);
-  // The uniforms both variants of gouraud.frag share.
+  // The uniforms every variant of gouraud.frag shares.
   auto use = [&](unsigned int program) {
     glUseProgram(program);
     glUniformMatrix4fv(glGetUniformLocation(program, "view_projection"), 1, GL_FALSE, &view_projection[0][0]);
@@ -283,30 +403,71 @@ void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,
     glUniform1i(glGetUniformLocation(program, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
   };
   use(program_);
-  glDrawElements(GL_TRIANGLES, GLsizei(untextured_count_), GL_UNSIGNED_INT, nullptr);
-  if (!textured_.empty()) {
-    const unsigned int p = textured_program_;
-    use(p);
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(glGetUniformLocation(p, "image"), 0);
-    const GLint mode = glGetUniformLocation(p, "texture_mode"), emitted = glGetUniformLocation(p, "emitted"),
-                inverse_mean = glGetUniformLocation(p, "inverse_mean"), checker0 = glGetUniformLocation(p, "checker0"),
-                checker1 = glGetUniformLocation(p, "checker1"), scale = glGetUniformLocation(p, "checker_scale");
-    for (const textured_run& run : textured_) {
-      if (run.texture < 0 || std::size_t(run.texture) >= textures_.size()) continue;
-      const gl_texture& t = textures_[std::size_t(run.texture)];
-      glUniform1i(mode, t.id ? 1 : 2);
-      glBindTexture(GL_TEXTURE_2D, t.id);
-      glUniform3fv(emitted, 1, &run.emitted[0]);
-      glUniform3fv(inverse_mean, 1, &t.inverse_mean[0]);
-      glUniform3fv(checker0, 1, &t.color0[0]);
-      glUniform3fv(checker1, 1, &t.color1[0]);
-      glUniform1f(scale, t.scale);
+  glDrawElements(GL_TRIANGLES, GLsizei(plain_count_), GL_UNSIGNED_INT, nullptr);
+  for (const bool specular : {false, true}) {
+    const unsigned int p = specular ? specular_program_ : textured_program_;
+    bool used = false;
+    for (const material_run& run : runs_) {
+      if ((run.probe >= 0) != specular || (specular && run.probe == hidden)) continue;
+      if (!used) {
+        use(p);
+        glUniform1i(glGetUniformLocation(p, "image"), 0);
+        if (specular) {
+          glUniform1i(glGetUniformLocation(p, "environment"), 1);
+          glUniform3fv(glGetUniformLocation(p, "scene_min"), 1, &bounds_min_[0]);
+          glUniform3fv(glGetUniformLocation(p, "scene_max"), 1, &bounds_max_[0]);
+          // The first four point lights (the Whitted scenes have one or two).
+          std::vector<glm::vec3> positions, intensities;
+          if (textures_source_)
+            for (const point_light& light : textures_source_->lights) {
+              if (positions.size() == 4) break;
+              positions.emplace_back(light.position);
+              intensities.emplace_back(light.intensity);
+            }
+          glUniform1i(glGetUniformLocation(p, "light_count"), GLint(positions.size()));
+          if (!positions.empty()) {
+            glUniform3fv(glGetUniformLocation(p, "light_position"), GLsizei(positions.size()), &positions[0][0]);
+            glUniform3fv(glGetUniformLocation(p, "light_intensity"), GLsizei(positions.size()), &intensities[0][0]);
+          }
+        }
+        used = true;
+      }
+      glActiveTexture(GL_TEXTURE0);
+      if (run.texture >= 0 && std::size_t(run.texture) < textures_.size()) {
+        const gl_texture& t = textures_[std::size_t(run.texture)];
+        glUniform1i(glGetUniformLocation(p, "texture_mode"), t.id ? 1 : 2);
+        glBindTexture(GL_TEXTURE_2D, t.id);
+        glUniform3fv(glGetUniformLocation(p, "inverse_mean"), 1, &t.inverse_mean[0]);
+        glUniform3fv(glGetUniformLocation(p, "checker0"), 1, &t.color0[0]);
+        glUniform3fv(glGetUniformLocation(p, "checker1"), 1, &t.color1[0]);
+        glUniform1f(glGetUniformLocation(p, "checker_scale"), t.scale);
+      } else {
+        glUniform1i(glGetUniformLocation(p, "texture_mode"), 0);
+        glBindTexture(GL_TEXTURE_2D, 0);
+      }
+      glUniform3fv(glGetUniformLocation(p, "emitted"), 1, &run.emitted[0]);
+      if (specular) {
+        const specular_surface& probe = probe_surfaces_[std::size_t(run.probe)];
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, probes_.texture(std::size_t(run.probe)));
+        glUniform3fv(glGetUniformLocation(p, "probe_centre"), 1, &probe.centre[0]);
+        glUniform1f(glGetUniformLocation(p, "probe_radius"), probe.radius);
+        glUniform1i(glGetUniformLocation(p, "probe_thin"), probe.thin ? 1 : 0);
+        glUniform3fv(glGetUniformLocation(p, "mirror_weight"), 1, &probe.kr[0]);
+        glUniform3fv(glGetUniformLocation(p, "transmit_weight"), 1, &probe.kt[0]);
+        glUniform1f(glGetUniformLocation(p, "ior"), probe.ior);
+        glUniform1i(glGetUniformLocation(p, "fresnel_on"), probe.fresnel ? 1 : 0);
+        glUniform3fv(glGetUniformLocation(p, "specular_colour"), 1, &probe.specular[0]);
+        glUniform1f(glGetUniformLocation(p, "shininess"), probe.shininess);
+      }
       glDrawElements(GL_TRIANGLES, GLsizei(run.count), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(std::uintptr_t(run.first * sizeof(unsigned int))));
     }
-    glBindTexture(GL_TEXTURE_2D, 0);
   }
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, 0);
   // The background where no sample holds a surface: a full-screen triangle
   // at the far plane through the same shader, so it gets the surfaces'
   // exposure and tone curve (and in linear output, its radiance unscaled).
@@ -334,16 +495,12 @@ void mesh_renderer::draw(const glm::mat4& view_projection, const glm::vec3& eye,
     glBindVertexArray(vao_);
   }
   if (settings.wireframe) {
-    // Edges pulled slightly towards the eye so they win the depth test.
+    // Edges pulled slightly towards the eye so they win the depth test (wire.frag).
     glUseProgram(wire_program_);
     glUniformMatrix4fv(glGetUniformLocation(wire_program_, "view_projection"), 1, GL_FALSE, &view_projection[0][0]);
     glUniform4f(glGetUniformLocation(wire_program_, "colour"), 0.0f, 0.0f, 0.0f, 1.0f);
-    glEnable(GL_POLYGON_OFFSET_LINE);
-    glPolygonOffset(-1.0f, -1.0f);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    glDisable(GL_POLYGON_OFFSET_LINE);
+    glDrawElements(GL_LINES, GLsizei(outline_count_), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(std::uintptr_t(outline_first_ * sizeof(unsigned int))));
   }
   glBindVertexArray(0);
   glUseProgram(0);

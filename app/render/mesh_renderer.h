@@ -10,8 +10,10 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "curved_display.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
+#include "reflection_probes.h"
 
 namespace bounce::gl {
 
@@ -27,28 +29,52 @@ struct display_settings {
   bool highlight_back_faces = false;
 };
 
-// The elements of one textured material: a range of mesh_arrays::indices.
-struct textured_run {
-  int texture = -1;         // index into the scene's textures
+// The elements of one material that needs more than the plain Gouraud
+// program: a texture, or mirror and glass (then one run per surface, the
+// surface's reflection probe). A range of mesh_arrays::indices.
+struct material_run {
+  int texture = -1;         // index into the scene's textures, or -1
+  int probe = -1;           // index into mesh_arrays::probes, or -1
   glm::vec3 emitted{0.0f};  // the material's ke: the part of B the texture leaves alone
   std::size_t first = 0;    // first index
   std::size_t count = 0;    // indices
 };
 
+// A specular surface (kr or kt > 0) as the live view approximates it: the
+// scene seen from the surface's centre in a cube map (reflection_probes.h).
+struct specular_surface {
+  int surface = -1;
+  glm::vec3 centre{0.0f};  // of the surface's bounding box
+  float radius = 0.0f;     // of the sphere about the centre through its farthest vertex
+  bool thin = false;       // a sheet (a pane, a mirror): light goes straight through
+  glm::vec3 kr{0.0f}, kt{0.0f};
+  float ior = 1.0f;
+  bool fresnel = false;
+  glm::vec3 specular{0.0f};  // Phong highlight of the point lights
+  float shininess = 0.0f;
+};
+
 // The mesh as the renderer's buffers take it: interleaved position,
 // normal, reflectance, element size and uv per vertex, and the triangles:
-// those of untextured materials first, in the mesh's order, then one run
-// per textured material. Plain CPU work: the window builds it on the
-// solver's thread, so that a large mesh's arrival costs the UI thread only
-// the copy into GL.
+// those of plain materials first, in the mesh's order, then one run per
+// textured or specular material. Curved surfaces are drawn finer than the
+// solver's elements (curved_display.h): the display vertices past the
+// mesh's own take blends of the solution's. Plain CPU work: the window
+// builds it on the solver's thread, so that a large mesh's arrival costs
+// the UI thread only the copy into GL.
 struct mesh_arrays {
   static constexpr std::size_t floats_per_vertex = 12;
   std::vector<float> vertices;  // floats_per_vertex a vertex
   std::vector<unsigned int> indices;
-  std::size_t vertex_count = 0;
+  std::size_t vertex_count = 0;           // display vertices
+  std::size_t solution_vertex_count = 0;  // the mesh's vertices, the first of them
+  std::vector<vertex_blend> blends;       // the rest, as blends of the first
   float largest_element = 0.0f;
-  std::size_t untextured_count = 0;  // indices drawn without a texture
-  std::vector<textured_run> textured;
+  std::size_t plain_count = 0;    // indices drawn by the plain program
+  std::size_t outline_first = 0;  // then the elements' edges, pairs of indices (the wireframe)
+  std::vector<material_run> runs;
+  std::vector<specular_surface> probes;
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
   // The scene the mesh was made from: its textures and background. Held so
   // that the renderer uploads a scene's textures once, not once per mesh.
   std::shared_ptr<const scene> source;
@@ -85,11 +111,21 @@ class mesh_renderer {
   // The same from solution_colours (2 x vertices), converted elsewhere.
   void update(const std::vector<glm::vec3>& colours, const glm::vec3& ambient);
 
+  // Renders up to `max_faces` cube-map faces of the specular surfaces'
+  // reflection probes that the last upload or update left stale (each
+  // update queues two rounds of every face: the second shows mirrors in
+  // mirrors). The window spends a face or two a frame; pictures for files
+  // call it with no limit before drawing. False when nothing was stale.
+  bool refresh_reflections(std::size_t max_faces = std::size_t(-1));
+
   // Draws the mesh, then the scene's background or sky where nothing was
   // drawn (the radiance that the ray-traced still shows where rays miss,
   // through the same exposure and tone curve). Textured materials show
-  // B x texture(uv) / mean(texture), the still's rule (see gouraud.frag).
-  void draw(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings) const;
+  // B x texture(uv) / mean(texture), the still's rule (see gouraud.frag);
+  // mirrors and glass add what their reflection probe sees.
+  void draw(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings) const {
+    draw_scene(view_projection, eye, settings, -1);
+  }
 
  private:
   struct gl_texture {
@@ -101,16 +137,26 @@ class mesh_renderer {
   };
   void upload_textures(const std::shared_ptr<const scene>& source);
   void delete_textures();
+  // draw() without the surface of probe `hidden` (>= 0: a probe's own view).
+  void draw_scene(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings,
+                  int hidden) const;
 
-  unsigned int program_ = 0, wire_program_ = 0, textured_program_ = 0, background_program_ = 0;
+  unsigned int program_ = 0, wire_program_ = 0, textured_program_ = 0, specular_program_ = 0, background_program_ = 0;
   unsigned int vao_ = 0, empty_vao_ = 0;
   unsigned int static_buffer_ = 0, dynamic_buffer_ = 0, index_buffer_ = 0;
-  int index_count_ = 0;
-  std::size_t vertex_count_ = 0;
+  std::size_t outline_first_ = 0, outline_count_ = 0;
+  std::size_t vertex_count_ = 0, solution_vertex_count_ = 0;
+  std::vector<vertex_blend> blends_;
+  std::vector<glm::vec3> expanded_;  // update()'s colours blended out to the display vertices
   float largest_element_ = 1.0f;
   glm::vec3 ambient_{0.0f};
-  std::size_t untextured_count_ = 0;
-  std::vector<textured_run> textured_;
+  std::size_t plain_count_ = 0;
+  std::vector<material_run> runs_;
+  std::vector<specular_surface> probe_surfaces_;
+  reflection_probes probes_;
+  std::size_t stale_faces_ = 0;  // faces left to render, counted down through the rounds
+  std::size_t next_face_ = 0;    // the face to render next, counting on through the probes' faces
+  glm::vec3 bounds_min_{0.0f}, bounds_max_{0.0f};
   std::shared_ptr<const scene> textures_source_;  // the scene whose textures are uploaded
   std::vector<gl_texture> textures_;
   glm::vec3 background_{0.0f};  // the scene's background and sky, as the still sees them

@@ -296,6 +296,9 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   cam.width = width_;
   cam.height = height_;
   const glm::mat4 view_projection(projection_matrix(cam, bounds(view)) * view_matrix(cam));
+  // One cube-map face of the mirrors' and glass's probes a frame, while the
+  // solution changes (docs/viewer.md, "Mirrors and glass").
+  if (view.mesh) renderer_.refresh_reflections(1);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width_, height_);
   glEnable(GL_MULTISAMPLE);

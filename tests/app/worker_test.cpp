@@ -139,7 +139,9 @@ TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
   constexpr std::size_t stride = gl::mesh_arrays::floats_per_vertex;
   ASSERT_EQ(view->mesh_arrays->vertices.size(), stride * mesh.vertex_count());
   EXPECT_EQ(view->mesh_arrays->source, view->source);  // for its textures and background
-  ASSERT_EQ(view->mesh_arrays->indices.size(), 3 * mesh.element_count());
+  // The triangles, then the elements' outline (2 indices an edge) for the wireframe.
+  ASSERT_EQ(view->mesh_arrays->plain_count, 3 * mesh.element_count());
+  ASSERT_EQ(view->mesh_arrays->indices.size(), 9 * mesh.element_count());
   EXPECT_EQ(view->mesh_arrays->indices[4], unsigned(mesh.elements[1][1]));
   EXPECT_EQ(view->mesh_arrays->vertices[stride * 7 + 1], float(mesh.positions[7].y));
   ASSERT_EQ(view->colours->size(), 2 * mesh.vertex_count());
