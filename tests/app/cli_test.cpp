@@ -120,7 +120,8 @@ TEST(Cli, InfoJsonOnTheCornellBox) {
 TEST(Cli, InfoOnEveryShippedScene) {
   for (const char* path :
        {"assets/furnace/furnace.json", "assets/whitted/whitted.json", "assets/teapot/teapot.json",
-        "assets/shapes/shapes.json", "assets/cornell_box/cornell_box.obj", "assets/textured_room/textured_room.json"}) {
+        "assets/shapes/shapes.json", "assets/cornell_box/cornell_box.obj", "assets/textured_room/textured_room.json",
+        "assets/cornell_caustics/cornell_caustics.json", "assets/glass_on_table/glass_on_table.json"}) {
     run_result r = run("info --json " + source_path(path));
     ASSERT_EQ(r.code, 0) << path << ": " << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
