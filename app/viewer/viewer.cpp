@@ -296,9 +296,11 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   cam.width = width_;
   cam.height = height_;
   const glm::mat4 view_projection(projection_matrix(cam, bounds(view)) * view_matrix(cam));
-  // One cube-map face of the mirrors' and glass's probes a frame, while the
-  // solution changes (docs/viewer.md, "Mirrors and glass").
-  if (view.mesh) renderer_.refresh_reflections(1);
+  // The mirrors' and glass's probes follow the solution (docs/viewer.md,
+  // "Mirrors and glass"): a cube-map face every fourth frame while the
+  // solver shoots (a face draws the whole scene, and the solution moves on
+  // anyway), every frame once it has stopped.
+  if (view.mesh && (!view.running || frame % 4 == 0)) renderer_.refresh_reflections(1);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width_, height_);
   glEnable(GL_MULTISAMPLE);
