@@ -386,17 +386,36 @@ TEST(HeadlessImages, PanelIsDrawnWhereItStands) {
   EXPECT_LT(region_difference(460, 300, 512, 512), 0.5);  // right of the 440-pixel panel
 }
 
+// Window tests need xvfb-run (third_party/install-deps.sh installs it).
+#define SKIP_WITHOUT_XVFB()                                    \
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) \
+  GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped"
+
+// `bounce view ARGS` under xvfb-run: its exit code (-1: it did not exit),
+// what it printed, and the command, for messages. Leak checking is off:
+// under GLX the unloaded driver leaks from an unknown module.
+struct window_run {
+  int code = -1;
+  std::string output, command;
+};
+window_run run_window(const scratch_dir& dir, const std::string& args) {
+  window_run r;
+  r.command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) + " view " + args + " >" +
+              dir.path("out.txt") + " 2>&1";
+  const int status = std::system(r.command.c_str());
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream out(dir.path("out.txt"));
+  r.output.assign(std::istreambuf_iterator<char>(out), {});
+  return r;
+}
+
 TEST(Window, OpensUnderXvfbSolvesAndTakesAScreenshot) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
-  // Leak checking off: under GLX the unloaded driver leaks from an unknown module.
-  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) + " view " +
-                              source_path("assets/cornell_box/cornell_box.json") +
-                              " --max-edge 60 --frames 120 --screenshot " + dir.path("window.png") + " --exit >" +
-                              dir.path("out.txt") + " 2>&1";
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  const window_run run =
+      run_window(dir, source_path("assets/cornell_box/cornell_box.json") + " --max-edge 60 --frames 120 --screenshot " +
+                          dir.path("window.png") + " --exit");
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   int w = 0, h = 0;
   std::vector<unsigned char> rgb;
   std::string error;
@@ -414,16 +433,13 @@ TEST(Window, OpensUnderXvfbSolvesAndTakesAScreenshot) {
 }
 
 TEST(Window, RayTracesAStillWhileTheViewRuns) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
   // As the panel's button: the still of the current camera from the latest
   // solution, traced on its own thread while frames keep coming.
-  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
-                              " view --size 120x120 --max-edge 80 --frames 30 --still " + dir.path("still.png") +
-                              " --screenshot " + dir.path("window.png") + " --exit >" + dir.path("out.txt") + " 2>&1";
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  const window_run run = run_window(dir, "--size 120x120 --max-edge 80 --frames 30 --still " + dir.path("still.png") +
+                                             " --screenshot " + dir.path("window.png") + " --exit");
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   int w = 0, h = 0;
   std::vector<unsigned char> rgb;
   std::string error;
@@ -439,19 +455,14 @@ TEST(Window, RayTracesAStillWhileTheViewRuns) {
 }
 
 TEST(Window, ShowsTheMeshRefiningWhileItSolves) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
   // Adaptive meshing in the window: each refinement pass brings a larger
   // mesh, uploaded between frames.
-  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
-                              " view --max-edge 150 --adaptive --until 1e-3 --frames 40 "
-                              "--screenshot " +
-                              dir.path("window.png") + " --exit >" + dir.path("out.txt") + " 2>&1";
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
-  std::ifstream out(dir.path("out.txt"));
-  const std::string text((std::istreambuf_iterator<char>(out)), {});
+  const window_run run = run_window(
+      dir, "--max-edge 150 --adaptive --until 1e-3 --frames 40 --screenshot " + dir.path("window.png") + " --exit");
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
+  const std::string& text = run.output;
   std::size_t shown = 0, meshed = 0;
   const std::size_t at = text.find("triangles (");
   ASSERT_NE(at, std::string::npos) << text;
@@ -466,16 +477,11 @@ TEST(Window, ShowsTheMeshRefiningWhileItSolves) {
 }
 
 TEST(Window, PlotsTheErrorAgainstAPathTracedReference) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
-  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
-                              " view --size 160x120 --max-edge 80 --until 1e-3 --frames 10 --error-plot --exit >" +
-                              dir.path("out.txt") + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream out(dir.path("out.txt"));
-  const std::string text((std::istreambuf_iterator<char>(out)), {});
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << text;
+  const window_run run = run_window(dir, "--size 160x120 --max-edge 80 --until 1e-3 --frames 10 --error-plot --exit");
+  const std::string& text = run.output;
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << text;
   EXPECT_NE(text.find("64x64 path traced, 1024 spp"), std::string::npos) << text;
   // "error plot: N measurements; error E0 at T0 s, E at T s": the last
   // solution (80 mm elements) within 30% of the path tracer's picture.
@@ -493,15 +499,11 @@ TEST(Window, PlotsTheErrorAgainstAPathTracedReference) {
 }
 
 TEST(Window, OpensAGeneratedSceneAndReportsItsTimes) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
-  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
-                              " view generated:box-room-3 --frames 30 --exit >" + dir.path("out.txt") + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream out(dir.path("out.txt"));
-  const std::string text((std::istreambuf_iterator<char>(out)), {});
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << text;
+  const window_run run = run_window(dir, "generated:box-room-3 --frames 30 --exit");
+  const std::string& text = run.output;
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << text;
   // "... N frames: M ms per frame (F fps), worst W ms; ..." and when the
   // mesh and the first light were shown.
   double mean = 0, fps = 0, worst = 0;
@@ -546,7 +548,7 @@ TEST(Window, TitleNamesTheSceneAndItJoinsTheRecentList) {
   // 60 s) until a window with the title shows, then let the scripted run end.
   const std::string script = "XDG_CONFIG_HOME=" + dir.path("config") + " ASAN_OPTIONS=detect_leaks=0 " +
                              std::string(BOUNCE_EXE) + " view " + scene +
-                             " --max-edge 150 --frames 150 --exit >/dev/null 2>&1 & "
+                             " --max-edge 150 --frames 400 --exit >/dev/null 2>&1 & "
                              "for i in $(seq 600); do xwininfo -root -tree | grep -q 'cornell_box.json - Bounce' && "
                              "{ echo found > " +
                              dir.path("title.txt") + "; break; }; sleep 0.1; done; wait";
@@ -590,8 +592,7 @@ double block_difference(const std::string& a_path, const std::string& b_path) {
 // the error of what it shows against an independent still of the same
 // camera (`bounce trace`) ends far below the live Gouraud view's.
 TEST(Window, TheViewAtRestConvergesTowardsTheStill) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
   // --size 96x96: the window opens at 900 x 900 (its smallest long side) on the scene camera.
   // The live view's screenshot comes after the solver has converged (60 frames).
@@ -601,12 +602,10 @@ TEST(Window, TheViewAtRestConvergesTowardsTheStill) {
     const std::string shots = dir.path(refine ? "refined" : "live");
     std::filesystem::create_directories(shots);
     // The last frame waits for 2 passes (slow machines and sanitizers trace slowly).
-    const std::string command =
-        "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) +
-        " view --size 96x96 --frames 60 --screenshot " + shots + "/last.png --no-panel-in-screenshot --exit" +
-        (refine ? " --refined-passes 2" : " --no-refine-at-rest") + " >" + dir.path("out.txt") + " 2>&1";
-    const int status = std::system(command.c_str());
-    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+    const window_run run =
+        run_window(dir, "--size 96x96 --frames 60 --screenshot " + shots + "/last.png --no-panel-in-screenshot --exit" +
+                            (refine ? " --refined-passes 2" : " --no-refine-at-rest"));
+    ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
     errors[refine] = block_difference(shots + "/last.png", dir.path("still.png"));
   }
   EXPECT_GT(errors[0], 0.15);  // the live view differs from the still (measured: 0.29 of 255)
@@ -866,15 +865,13 @@ TEST(Window, TexturesAndAMirrorShowInTheLiveView) {
   // alone. Its checker floor shows both colours, and the mirror sphere
   // shows the floor's checker reflected (without reflections it is a dark
   // grey: rho 0.05).
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (third_party/install-deps.sh installs it): window test skipped";
+  SKIP_WITHOUT_XVFB();
   scratch_dir dir;
-  const std::string command = "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a " + std::string(BOUNCE_EXE) + " view " +
-                              source_path("assets/whitted/whitted.json") +
-                              " --size 96x72 --frames 60 --no-refine-at-rest --no-panel-in-screenshot --screenshot " +
-                              dir.path("window.png") + " --exit >" + dir.path("out.txt") + " 2>&1";
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  const window_run run = run_window(dir, source_path("assets/whitted/whitted.json") +
+                                             " --size 96x72 --frames 60 --no-refine-at-rest --no-panel-in-screenshot "
+                                             "--screenshot " +
+                                             dir.path("window.png") + " --exit");
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   int w = 0, h = 0;
   std::vector<unsigned char> rgb;
   std::string error;
