@@ -63,13 +63,19 @@ void add_trace_options(CLI::App& command, trace_options& options) {
                   "(linear radiance, unscaled)")
       ->capture_default_str();
   command.add_option("--pfm", options.pfm_path, "also write the still in linear radiance to this PFM");
-  command.add_option("--integrator", options.integrator, "whitted (two-pass with radiosity) or path (reference)")
-      ->check(CLI::IsMember({"whitted", "path"}))
+  command
+      .add_option("--integrator", options.integrator,
+                  "whitted (diffuse light from the radiosity solution), twopass (direct light by shadow rays, "
+                  "caustics from a photon map, the rest by a final gather over the solution), ppm (twopass with "
+                  "progressive caustics) or path (reference)")
+      ->check(CLI::IsMember({"whitted", "twopass", "ppm", "path"}))
       ->capture_default_str();
   command
       .add_option("--spp", options.spp,
                   "samples per pixel, stratified (1 = pixel centre). Default: whitted 16, which smooths edges and the "
-                  "soft shadows of area lights; path 256, which leaves about 8% noise per pixel in the Cornell box")
+                  "soft shadows of area lights; twopass and ppm 4 (with 16 shadow rays each and the cached gather, "
+                  "about 2% from the reference in the Cornell box); path 256, which leaves about 8% noise per pixel "
+                  "in the Cornell box")
       ->check(CLI::Range(1, 1 << 20));
   command
       .add_option("--adaptive-spp", options.adaptive_spp,
@@ -77,9 +83,11 @@ void add_trace_options(CLI::App& command, trace_options& options) {
       ->check(CLI::Range(0, 1 << 20));
   command
       .add_option("--depth", options.depth,
-                  "Whitted: depth of the specular tree (default 8); path: longest path (default 1000)")
+                  "whitted, twopass, ppm: depth of the specular tree (default 8); path: longest path (default 1000)")
       ->check(CLI::Range(1, 100000));
-  command.add_option("--light-samples", options.light_samples, "Whitted: shadow rays to area emitters per hit")
+  command
+      .add_option("--light-samples", options.light_samples,
+                  "whitted, twopass, ppm: shadow rays to area emitters per hit")
       ->check(CLI::Range(0, 1 << 16))
       ->capture_default_str();
   command
@@ -103,6 +111,25 @@ void add_trace_options(CLI::App& command, trace_options& options) {
           },
           ">= 0"))
       ->capture_default_str();
+  command
+      .add_option("--photons", options.photons,
+                  "twopass and ppm: caustic photons (ppm: per pass). Default: none if nothing in the scene is a "
+                  "mirror or glass, else 500000 (twopass) or 200000 (ppm)")
+      ->check(CLI::Range(0L, 1L << 31));
+  command.add_option("--passes", options.passes, "ppm: photon passes, each with a smaller radius")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  command
+      .add_option("--gather-rays", options.gather_rays,
+                  "twopass and ppm: final gather rays per irradiance record (stratified, cosine-weighted)")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  command
+      .add_option("--cache-accuracy", options.cache_accuracy,
+                  "twopass and ppm: the irradiance cache's a (Ward 1988): smaller makes more records; 0 gathers at "
+                  "every shading point")
+      ->check(number_in(0.0, 10.0))
+      ->capture_default_str();
   command.add_flag("--ray-baseline", options.ray_baseline,
                    "also cast the pixel-centre rays alone (closest hit, no shading) and compare rates");
   command.add_option("--exposure", options.exposure, "PNG value = radiance x exposure")
@@ -113,11 +140,26 @@ void add_trace_options(CLI::App& command, trace_options& options) {
 std::string check_trace_options(const CLI::App& command, const trace_options& options) {
   auto given = [&](const char* name) { return command.count(name) > 0; };
   const bool path = options.integrator == "path";
+  const bool gathered = options.integrator == "twopass" || options.integrator == "ppm";
+  if (options.integrator != "ppm" && given("--passes")) return "--passes applies to --integrator ppm only";
+  if (!gathered)
+    for (const char* gather_only : {"--photons", "--gather-rays", "--cache-accuracy"})
+      if (given(gather_only)) return std::string(gather_only) + " applies to --integrator twopass and ppm only";
+  if (gathered)
+    for (const char* whitted_only : {"--direct", "--no-radiosity", "--ambient"})
+      if (given(whitted_only))
+        return std::string(whitted_only) + " applies to --integrator whitted only (" + options.integrator +
+               " takes direct light from shadow rays and needs the radiosity pass)";
+  if (options.integrator == "ppm" && given("--adaptive-spp"))
+    return "--adaptive-spp does not apply to --integrator ppm (its caustic points belong to the first samples)";
   if (path) {
-    for (const char* whitted_only : {"--light-samples", "--direct", "--no-radiosity", "--ambient"})
+    if (given("--light-samples")) return "--light-samples applies to --integrator whitted, twopass and ppm only";
+    for (const char* whitted_only : {"--direct", "--no-radiosity", "--ambient"})
       if (given(whitted_only)) return std::string(whitted_only) + " applies to --integrator whitted only";
     if (std::string solver = given_options(command, solver_option_names()); !solver.empty())
-      return solver + ": the path tracer makes no radiosity pass (solver options apply to --integrator whitted)";
+      return solver +
+             ": the path tracer makes no radiosity pass (solver options apply to --integrator whitted, twopass "
+             "and ppm)";
   }
   if (given("--ambient") && !options.no_radiosity) return "--ambient applies with --no-radiosity only";
   if (options.no_radiosity && given("--direct"))
@@ -134,7 +176,15 @@ std::string check_trace_options(const CLI::App& command, const trace_options& op
 
 int run_trace(const scene& s, const solver_settings& solver, const trace_options& options) {
   trace_params params;
-  params.method = options.integrator == "path" ? integrator::path : integrator::whitted;
+  params.method = options.integrator == "path"      ? integrator::path
+                  : options.integrator == "twopass" ? integrator::twopass
+                  : options.integrator == "ppm"     ? integrator::ppm
+                                                    : integrator::whitted;
+  params.photons = options.photons;
+  params.passes = options.passes;
+  params.gather_rays = options.gather_rays;
+  params.cache_accuracy = options.cache_accuracy;
+  const bool gathered = params.method == integrator::twopass || params.method == integrator::ppm;
   params.spp = options.spp > 0 ? options.spp : default_spp(options.integrator);
   params.adaptive_spp = options.adaptive_spp;
   if (options.depth > 0) (params.method == integrator::path ? params.max_path : params.max_depth) = options.depth;
@@ -147,7 +197,7 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
   // ambient from a coarse solution (or the user).
   solved pass;
   std::unique_ptr<radiosity_field> field;
-  if (params.method == integrator::whitted && !options.no_radiosity) {
+  if ((params.method == integrator::whitted && !options.no_radiosity) || gathered) {
     if (!solve(s, solver, pass)) return exit_input_error;
     say("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.state->mesh->element_count(),
         static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
@@ -176,13 +226,47 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
   auto job = std::async(std::launch::async,
                         [&] { return trace_image(s, s.view, rays, field.get(), params, &progress, &stats); });
   {
-    progress_line line("tracing");
+    // One line per stage: photons, the cache's records, the pixels, ppm's
+    // photon passes.
+    std::unique_ptr<progress_line> line;
+    trace_stage shown = trace_stage::pixels;
     while (job.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
-      const long total = progress.pixels_total;
-      line.update(total > 0 ? double(progress.pixels_done) / double(total) : 0.0, std::to_string(params.spp) + " spp");
+      const trace_stage stage = progress.stage;
+      if (!line || stage != shown) {
+        line.reset();
+        const char* what = stage == trace_stage::photons  ? "photons"
+                           : stage == trace_stage::cache  ? "gathering"
+                           : stage == trace_stage::passes ? "photon passes"
+                                                          : "tracing";
+        line = std::make_unique<progress_line>(what);
+        shown = stage;
+      }
+      auto fraction = [](long done, long total) { return total > 0 ? double(done) / double(total) : 0.0; };
+      if (stage == trace_stage::photons)
+        line->update(fraction(progress.photons.photons_done, progress.photons.photons_total),
+                     std::to_string(progress.photons.photons_total.load()) + " photons");
+      else if (stage == trace_stage::cache)
+        line->update(fraction(progress.cache_points_done, progress.cache_points_total), "irradiance cache");
+      else if (stage == trace_stage::passes)
+        line->update(fraction(progress.passes_done, progress.passes_total),
+                     "pass " + std::to_string(progress.passes_done.load()) + " of " +
+                         std::to_string(progress.passes_total.load()));
+      else
+        line->update(fraction(progress.pixels_done, progress.pixels_total), std::to_string(params.spp) + " spp");
     }
   }
   const image img = job.get();
+  if (gathered)
+    say("%s: %llu photons (%llu stored) in %.3f s%s; irradiance cache %llu records (%llu points gathered on the spot), "
+        "%llu gather rays, %.3f s\n",
+        options.integrator.c_str(), static_cast<unsigned long long>(stats.photons_emitted),
+        static_cast<unsigned long long>(stats.photons_stored), stats.photon_seconds,
+        params.method == integrator::ppm
+            ? (", " + std::to_string(stats.passes) + " passes, final radius " + std::to_string(stats.final_radius))
+                  .c_str()
+            : "",
+        static_cast<unsigned long long>(stats.cache_records), static_cast<unsigned long long>(stats.cache_misses),
+        static_cast<unsigned long long>(stats.gather_rays), stats.cache_seconds);
 
   const double rays_total = double(stats.primary_rays + stats.shadow_rays + stats.secondary_rays);
   say("traced %dx%d (%s, %d spp%s) in %.3f s (scene build %.3f s): %llu primary, %llu shadow, %llu secondary rays, "
@@ -227,6 +311,18 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
                             {"refined_pixels", stats.refined_pixels},
                             {"seconds", stats.seconds},
                             {"scene_build_seconds", build_seconds}}}};
+    if (gathered) {
+      out["trace"]["photons"] = {
+          {"emitted", stats.photons_emitted}, {"stored", stats.photons_stored}, {"seconds", stats.photon_seconds}};
+      if (params.method == integrator::ppm) {
+        out["trace"]["photons"]["passes"] = stats.passes;
+        out["trace"]["photons"]["final_radius"] = stats.final_radius;
+      }
+      out["trace"]["irradiance_cache"] = {{"records", stats.cache_records},
+                                          {"misses", stats.cache_misses},
+                                          {"gather_rays", stats.gather_rays},
+                                          {"seconds", stats.cache_seconds}};
+    }
     // The radiosity pass, when the still used one (two-pass, or the coarse
     // solution a one-pass ambient term came from).
     if (pass.state) out["radiosity"] = solver_stats_json(s, pass.settings, pass.mesh, *pass.state, pass.mesh_seconds);

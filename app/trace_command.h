@@ -1,5 +1,6 @@
 // `bounce trace`: solve (the radiosity pass), then ray trace a still of the
-// camera (Whitted, two-pass) or path trace a reference; PNG and PFM out.
+// camera (Whitted; two-pass with a final gather and caustics, plain or
+// progressive) or path trace a reference; PNG and PFM out.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +14,7 @@ namespace bounce {
 struct trace_options {
   std::string out_path = "bounce-trace.png";  // --out
   std::string pfm_path;                       // --pfm: linear radiance
-  std::string integrator = "whitted";         // whitted | path
+  std::string integrator = "whitted";         // whitted | twopass | ppm | path
   int spp = 0;                                // 0: default_spp(integrator)
   int adaptive_spp = 0;
   int depth = 0;  // 0: the integrator's default
@@ -23,8 +24,12 @@ struct trace_options {
   std::optional<double> ambient;  // its irradiance; default: the mean indirect irradiance of a coarse solution
   std::uint64_t seed = 1;
   double exposure = 1.0;
-  bool ray_baseline = false;  // also time bare closest-hit queries of the pixel-centre rays
-  std::string stats_path;     // --stats: trace (and radiosity pass) statistics as JSON
+  long photons = -1;             // twopass, ppm (per pass): -1 = default_caustic_photons
+  int passes = 32;               // ppm
+  int gather_rays = 256;         // twopass, ppm
+  double cache_accuracy = 0.25;  // twopass, ppm: Ward's a; 0 = no cache
+  bool ray_baseline = false;     // also time bare closest-hit queries of the pixel-centre rays
+  std::string stats_path;        // --stats: trace (and radiosity pass) statistics as JSON
 };
 
 void add_trace_options(CLI::App& command, trace_options& options);
@@ -32,7 +37,8 @@ void add_trace_options(CLI::App& command, trace_options& options);
 // Samples per pixel when --spp is not given: enough for a clean picture of
 // the Cornell box (see --help).
 inline int default_spp(const std::string& integrator) {
-  return integrator == "path" ? 256 : 16;
+  if (integrator == "path") return 256;
+  return integrator == "whitted" ? 16 : 4;
 }
 
 // Options the chosen integrator and passes would ignore (e.g. --ambient

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "base/parallel.h"
@@ -14,7 +16,9 @@
 #include "scene/scene_io.h"
 #include "scene/sky.h"
 #include "scene/texture.h"
+#include "trace/irradiance_cache.h"
 #include "trace/optics.h"
+#include "trace/progressive_photons.h"
 
 namespace bounce {
 namespace {
@@ -78,8 +82,22 @@ vec3 cosine_direction(const vec3& n, double u1, double u2) {
 }
 
 struct counters {
-  std::uint64_t primary = 0, shadow = 0, secondary = 0;
+  std::uint64_t primary = 0, shadow = 0, secondary = 0, gather = 0, misses = 0;
+  std::vector<caustic_hit>* hits = nullptr;  // ppm: where caustic shading points go instead of being estimated
+  int pixel = -1;                            // ... and the pixel they are for
 };
+
+// A diffuse point that a pixel centre's specular tree reaches: where the
+// irradiance cache may want a record.
+struct cache_point {
+  vec3 position{0.0}, n{0.0}, n_face{0.0};
+  double footprint = 0.0;  // a pixel's width at the point's distance along the eye path
+  int pixel = 0, index = 0;
+};
+
+bool positive(const rgb& c) {
+  return glm::any(glm::greaterThan(c, rgb(0.0)));
+}
 
 // What a hit offers for shading, on the side the ray arrived from.
 struct surface_point {
@@ -101,6 +119,44 @@ class tracer {
     for (const texture& tex : s.textures) texture_means_.push_back(texture_mean(tex));
     const bounds3 b = scene_bounds(s);
     scene_diagonal_ = std::max(glm::length(b.max - b.min), 1e-12);
+    pixel_angle_ = 2.0 * std::tan(view.fov_y_degrees * pi / 360.0) / std::max(1, view.height);
+    final_gather_ = p.method == integrator::twopass || p.method == integrator::ppm;
+  }
+
+  void set_caustics(const photon_map* map, double radius, int k) {
+    caustics_ = map && !map->empty() ? map : nullptr;
+    caustic_radius_ = radius;
+    caustic_k_ = k;
+  }
+  void set_cache(const irradiance_cache* cache) { cache_ = cache; }
+  double scene_diagonal() const { return scene_diagonal_; }
+
+  // The diffuse points that pixel (x, y)'s centre reaches through its
+  // specular tree, as whitted() follows it.
+  void shading_points(int x, int y, std::vector<cache_point>& out) const {
+    const vec3 d = camera_ray_direction(view_, x + 0.5, y + 0.5);
+    shading_points(view_.eye, d, 0, rgb(1.0), 0.0, y * view_.width + x, out);
+  }
+
+  // A final gather at a diffuse point: the irradiance record, with R
+  // clamped between what a pixel can resolve and a tenth of the scene.
+  irradiance_record gather(const vec3& point, const vec3& n, const vec3& n_face, double footprint, std::uint64_t seed,
+                           counters& c) const {
+    irradiance_record r;
+    const vec3 origin = point + offset_ * n_face;
+    gather_irradiance(
+        point, n, p_.gather_rays, seed,
+        [&](const vec3& dir, std::uint64_t ray_seed) {
+          if (glm::dot(dir, n_face) <= 0.0)  // below the true surface (interpolated normals)
+            return gather_sample{rgb(0.0), std::numeric_limits<double>::infinity()};
+          random_stream rng(p_.seed, ray_seed, 3);
+          return gather_ray(origin, dir, rng, c);
+        },
+        r);
+    const double a = std::max(p_.cache_accuracy, 1e-6);
+    const double lo = 2.0 * footprint / a, hi = std::max(lo, 0.1 * scene_diagonal_);
+    r.radius = std::clamp(r.radius, lo, hi);
+    return r;
   }
 
   rgb pixel(int x, int y, int samples, std::uint64_t pass, counters& c) const {
@@ -111,11 +167,15 @@ class tracer {
     else
       stratified_points(samples, rng, offsets);
     rgb sum(0.0);
+    const std::size_t first_hit = c.hits ? c.hits->size() : 0;
+    c.pixel = y * view_.width + x;
     for (const vec2& o : offsets) {
       const vec3 d = camera_ray_direction(view_, x + o.x, y + o.y);
       ++c.primary;
       sum += p_.method == integrator::path ? path(view_.eye, d, rng, c) : whitted(view_.eye, d, 0, rgb(1.0), rng, c);
     }
+    if (c.hits)
+      for (std::size_t i = first_hit; i < c.hits->size(); ++i) (*c.hits)[i].weight /= double(offsets.size());
     return sum / double(offsets.size());
   }
 
@@ -239,7 +299,24 @@ class tracer {
     const surface_point sp = describe(*hit, d);
     rgb radiance = sp.front ? sp.mat->ke : rgb(0.0);
 
-    if (sp.front) {
+    if (sp.front && final_gather_) {
+      // Two-pass with a final gather: direct light by shadow rays, caustics
+      // from the photons, and the rest of the diffuse light from the cache.
+      const bool diffuse = positive(sp.rho);
+      const bool shiny = sp.mat->shininess > 0.0 && positive(sp.mat->specular);
+      if (diffuse || shiny) {
+        rgb irradiance(0.0), highlight(0.0);
+        direct_light(sp, -d, p_.light_samples, rng, c, irradiance, highlight);
+        radiance += sp.rho / pi * irradiance + highlight;
+      }
+      if (diffuse) {
+        if (c.hits)
+          c.hits->push_back({hit->point, sp.n, weight * sp.rho / pi, c.pixel});
+        else if (caustics_)
+          radiance += sp.rho / pi * caustics_->irradiance_estimate(hit->point, sp.n, caustic_radius_, caustic_k_);
+        radiance += sp.rho / pi * indirect_irradiance(sp, rng, c);
+      }
+    } else if (sp.front) {
       const bool diffuse = glm::any(glm::greaterThan(sp.rho, rgb(0.0)));
       const bool shiny = sp.mat->shininess > 0.0 && glm::any(glm::greaterThan(sp.mat->specular, rgb(0.0)));
       const bool solution = field_ && p_.diffuse != diffuse_source::ambient;
@@ -272,6 +349,78 @@ class tracer {
       radiance += sp.kt * whitted(hit->point - offset_ * sp.n_face, *sp.refracted, depth + 1, weight * sp.kt, rng, c);
     }
     return radiance;
+  }
+
+  // What a final gather ray brings back to the diffuse point it left: the
+  // solution's reflected radiance (B - E) / pi where it lands on a diffuse
+  // surface (caustic light there, L S+ D D, is the solver's own specular
+  // transfer: the photon map is not asked, which would count it twice),
+  // going on through mirrors and glass by one branch picked in proportion
+  // to its weight. Emitters that shadow rays sample, and the sky, are
+  // direct light and count nothing here; seen through mirrors and glass
+  // they are caustics, the photon map's. The background (no sky) counts:
+  // shadow rays do not find it.
+  gather_sample gather_ray(vec3 origin, vec3 d, random_stream& rng, counters& c) const {
+    gather_sample out{rgb(0.0), std::numeric_limits<double>::infinity()};
+    rgb throughput(1.0);
+    for (int depth = 0;; ++depth) {
+      ++c.gather;
+      const auto hit = rays_.intersect(origin, d);
+      if (!hit) {
+        if (!s_.sky.on()) out.radiance += throughput * s_.background;
+        return out;
+      }
+      if (depth == 0) out.distance = hit->t;
+      const surface_point sp = describe(*hit, d);
+      if (sp.front && positive(sp.mat->ke) && !rays_.is_sampled_emitter(sp.hit.surface))
+        out.radiance += throughput * sp.mat->ke;
+      if (positive(sp.rho)) {
+        out.radiance += throughput * field_->at(sp.hit.surface, hit->point).reflected * sp.texture_detail / pi;
+      }
+      if (depth + 1 >= p_.max_depth) return out;
+      const double p_mirror = mean_channel(sp.kr), p_transmit = sp.refracted ? mean_channel(sp.kt) : 0.0;
+      const double pick = rng.uniform() * std::max(1.0, p_mirror + p_transmit);
+      if (pick < p_mirror) {
+        throughput *= sp.kr / p_mirror;
+        d = reflect(d, sp.n);
+        origin = hit->point + offset_ * sp.n_face;
+      } else if (pick < p_mirror + p_transmit) {
+        throughput *= sp.kt / p_transmit;
+        d = *sp.refracted;
+        origin = hit->point - offset_ * sp.n_face;
+      } else {
+        return out;
+      }
+      if (p_mirror + p_transmit > 1.0) throughput *= p_mirror + p_transmit;
+    }
+  }
+
+  // The indirect irradiance at a diffuse point: interpolated from the
+  // cache's records (Ward's test, then twice its reach for sub-pixel
+  // samples between the pixel centres' records), or gathered on the spot.
+  rgb indirect_irradiance(const surface_point& sp, random_stream& rng, counters& c) const {
+    if (cache_) {
+      for (double reach : {1.0, irradiance_cache::max_reach})
+        if (const std::optional<rgb> e = cache_->lookup(sp.hit.point, sp.n, reach)) return *e;
+      ++c.misses;
+    }
+    return gather(sp.hit.point, sp.n, sp.n_face, 0.0, rng.next_bits(), c).irradiance;
+  }
+
+  void shading_points(const vec3& origin, const vec3& d, int depth, const rgb& weight, double length, int pixel,
+                      std::vector<cache_point>& out) const {
+    const auto hit = rays_.intersect(origin, d);
+    if (!hit) return;
+    const surface_point sp = describe(*hit, d);
+    const double travelled = length + hit->t;
+    if (sp.front && positive(sp.rho))
+      out.push_back({hit->point, sp.n, sp.n_face, travelled * pixel_angle_, pixel, int(out.size())});
+    if (depth + 1 >= p_.max_depth) return;
+    if (max_channel(weight * sp.kr) > p_.min_weight)
+      shading_points(hit->point + offset_ * sp.n_face, reflect(d, sp.n), depth + 1, weight * sp.kr, travelled, pixel,
+                     out);
+    if (sp.refracted && max_channel(weight * sp.kt) > p_.min_weight)
+      shading_points(hit->point - offset_ * sp.n_face, *sp.refracted, depth + 1, weight * sp.kt, travelled, pixel, out);
   }
 
   // Unbiased path tracing: next-event estimation to the point lights and
@@ -347,14 +496,106 @@ class tracer {
   double offset_;
   double scene_diagonal_ = 1.0;     // shadow rays to the sky end this far beyond any point
   std::vector<rgb> texture_means_;  // what the radiosity pass multiplied rho by
+  double pixel_angle_ = 0.0;        // a pixel's width over the distance
+  bool final_gather_ = false;       // twopass, ppm
+  const photon_map* caustics_ = nullptr;
+  double caustic_radius_ = 0.0;
+  int caustic_k_ = 0;
+  const irradiance_cache* cache_ = nullptr;
 };
+
+}  // namespace
+
+long default_caustic_photons(const scene& s, integrator method) {
+  const bool specular = std::any_of(s.materials.begin(), s.materials.end(),
+                                    [](const material& m) { return positive(m.kr) || positive(m.kt); });
+  if (!specular) return 0;
+  return method == integrator::ppm ? 200000 : 500000;
+}
+
+double default_caustic_radius(const scene& s, integrator method) {
+  const bounds3 b = scene_bounds(s);
+  const double diagonal = std::max(glm::length(b.max - b.min), 1e-12);
+  return diagonal * (method == integrator::ppm ? 0.01 : 0.02);
+}
+
+namespace {
+
+// The cache's records, made before the pixels so that the picture does not
+// depend on the threads: the pixel centres' shading points are visited
+// coarse to fine (every 16th pixel, then every 8th, ... every one), and at
+// each level those no record covers yet get one, gathered in parallel and
+// added in pixel order.
+void make_cache(const tracer& t, const camera& view, const trace_params& params, trace_progress& prog,
+                irradiance_cache& cache, counters& total) {
+  const int w = view.width, h = view.height;
+  std::vector<std::vector<cache_point>> points(std::size_t(w) * h);
+  for_each_block(params.parallel, std::size_t(h), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end && !prog.cancel.load(std::memory_order_relaxed); ++y)
+      for (int x = 0; x < w; ++x) t.shading_points(x, int(y), points[y * std::size_t(w) + std::size_t(x)]);
+  });
+  std::size_t all = 0;
+  for (const auto& p : points) all += p.size();
+  prog.cache_points_total = long(all);
+  std::mutex mutex;
+  for (int stride = 16; stride >= 1 && !prog.cancel; stride /= 2) {
+    std::vector<const cache_point*> level;
+    for (int y = 0; y < h; y += stride)
+      for (int x = 0; x < w; x += stride) {
+        if (stride < 16 && x % (2 * stride) == 0 && y % (2 * stride) == 0) continue;  // a coarser level's
+        for (const cache_point& p : points[std::size_t(y) * w + x]) level.push_back(&p);
+      }
+    std::vector<char> uncovered(level.size(), 0);
+    for_each_block(params.parallel, level.size(), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) uncovered[i] = !cache.lookup(level[i]->position, level[i]->n);
+    });
+    std::vector<std::size_t> wanted;
+    for (std::size_t i = 0; i < level.size(); ++i)
+      if (uncovered[i]) wanted.push_back(i);
+    std::vector<irradiance_record> made(wanted.size());
+    for_each_block(params.parallel, wanted.size(), 4, [&](std::size_t begin, std::size_t end) {
+      counters c;
+      for (std::size_t k = begin; k < end && !prog.cancel.load(std::memory_order_relaxed); ++k) {
+        const cache_point& p = *level[wanted[k]];
+        const std::uint64_t seed = (std::uint64_t(p.pixel) << 8 | std::uint64_t(p.index)) * 0x9E3779B97F4A7C15ull;
+        made[k] = t.gather(p.position, p.n, p.n_face, p.footprint, seed ^ params.seed, c);
+      }
+      const std::lock_guard lock(mutex);
+      total.gather += c.gather;
+    });
+    for (const irradiance_record& r : made)
+      if (r.radius > 0.0) cache.add(r);
+    prog.cache_points_done += long(level.size());
+  }
+}
+
+struct caustic_pass {
+  caustic_result photons;
+  double seconds = 0.0;
+};
+
+caustic_pass shoot(const scene& s, const ray_scene& rays, const trace_params& params, long count, int pass,
+                   trace_progress& prog) {
+  photon_params pp;
+  pp.photon_count = count;
+  pp.seed = params.seed * 0x2545F4914F6CDD1Dull + std::uint64_t(pass);
+  pp.parallel = params.parallel;
+  prog.photons.photons_done = 0;
+  prog.photons.cancel = prog.cancel.load();
+  caustic_pass out{caustic_photons(s, rays, pp, &prog.photons)};
+  out.seconds = out.photons.stats.seconds;
+  return out;
+}
 
 }  // namespace
 
 image trace_image(const scene& s, const camera& view, const ray_scene& rays, const radiosity_field* field,
                   const trace_params& params, trace_progress* progress, trace_stats* stats) {
   const auto start = std::chrono::steady_clock::now();
-  const tracer t(s, view, rays, field, params);
+  const bool final_gather = params.method == integrator::twopass || params.method == integrator::ppm;
+  if (final_gather && !field)
+    throw std::invalid_argument("trace_image: the twopass and ppm integrators need a radiosity solution");
+  tracer t(s, view, rays, field, params);
   image img;
   img.width = view.width;
   img.height = view.height;
@@ -363,14 +604,45 @@ image trace_image(const scene& s, const camera& view, const ray_scene& rays, con
   trace_progress& prog = progress ? *progress : local_progress;
   std::mutex stats_mutex;
   counters total;
+  trace_stats st;
+
+  // Caustic photons: twopass's map, or ppm's first pass.
+  const long photon_count =
+      final_gather ? (params.photons >= 0 ? params.photons : default_caustic_photons(s, params.method)) : 0;
+  const double caustic_radius =
+      params.caustic_radius > 0.0 ? params.caustic_radius : default_caustic_radius(s, params.method);
+  caustic_pass first;
+  if (photon_count > 0 && !prog.cancel) {
+    prog.stage = trace_stage::photons;
+    prog.passes_total = params.method == integrator::ppm ? std::max(1, params.passes) : 1;
+    first = shoot(s, rays, params, photon_count, 1, prog);
+    st.photons_emitted += first.photons.stats.emitted;
+    st.photons_stored += first.photons.stats.stored;
+    st.photon_seconds += first.seconds;
+    if (params.method == integrator::twopass) t.set_caustics(&first.photons.map, caustic_radius, params.caustic_k);
+  }
+  irradiance_cache cache(std::max(params.cache_accuracy, 1e-6), 0.01 * t.scene_diagonal());
+  if (final_gather && params.cache_accuracy > 0.0 && !prog.cancel) {
+    prog.stage = trace_stage::cache;
+    const auto cache_start = std::chrono::steady_clock::now();
+    make_cache(t, view, params, prog, cache, total);
+    st.cache_records = cache.size();
+    st.cache_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - cache_start).count();
+    t.set_cache(&cache);
+  }
 
   // One pass over a list of pixels (all of them, or those to refine), in
-  // rows of pixels handed out to TBB's threads.
+  // rows of pixels handed out to TBB's threads. ppm keeps each chunk's
+  // caustic shading points in chunk order.
+  const bool progressive = params.method == integrator::ppm && photon_count > 0;
+  std::vector<std::vector<caustic_hit>> chunk_hits;
   auto trace_pixels = [&](std::size_t count, auto&& pixel_at, int samples, std::uint64_t pass) {
     constexpr std::size_t chunk = 64;
+    if (progressive) chunk_hits.assign((count + chunk - 1) / chunk, {});
     for_each_block(params.parallel, (count + chunk - 1) / chunk, 1, [&](std::size_t begin, std::size_t end) {
       counters c;
       for (std::size_t block = begin; block < end && !prog.cancel.load(std::memory_order_relaxed); ++block) {
+        c.hits = progressive ? &chunk_hits[block] : nullptr;
         const std::size_t last = std::min(count, (block + 1) * chunk);
         for (std::size_t k = block * chunk; k < last; ++k) {
           const int i = pixel_at(k);
@@ -383,15 +655,19 @@ image trace_image(const scene& s, const camera& view, const ray_scene& rays, con
       total.primary += c.primary;
       total.shadow += c.shadow;
       total.secondary += c.secondary;
+      total.gather += c.gather;
+      total.misses += c.misses;
     });
   };
 
   const std::size_t pixel_count = std::size_t(img.width) * img.height;
+  prog.stage = trace_stage::pixels;
   prog.pixels_total = long(pixel_count);
   trace_pixels(
       pixel_count, [](std::size_t k) { return int(k); }, params.spp, 0);
   std::uint64_t refined = 0;
-  if (params.adaptive_spp > params.spp && !prog.cancel) {
+  // (ppm does not refine: its caustic points belong to the first samples.)
+  if (params.adaptive_spp > params.spp && !prog.cancel && !progressive) {
     const std::vector<bool> marked = contrast_edges(img, params.adaptive_contrast);
     std::vector<int> edges;
     for (std::size_t i = 0; i < marked.size(); ++i)
@@ -401,10 +677,46 @@ image trace_image(const scene& s, const camera& view, const ray_scene& rays, con
     trace_pixels(
         edges.size(), [&](std::size_t k) { return edges[k]; }, params.adaptive_spp, 1);
   }
+
+  if (progressive && !prog.cancel) {
+    // Progressive photon passes over the caustic points found above: each
+    // pass's box estimate at its radius, averaged over the passes.
+    std::vector<caustic_hit> hits;
+    for (auto& v : chunk_hits) hits.insert(hits.end(), v.begin(), v.end());
+    chunk_hits.clear();
+    const auto passes_start = std::chrono::steady_clock::now();
+    prog.stage = trace_stage::passes;
+    const caustic_hit_grid grid(hits, caustic_radius);
+    std::vector<rgb> irradiance(hits.size(), rgb(0.0));
+    grid.add_pass(first.photons.map.photons(), caustic_radius, irradiance);
+    int passes = 1;
+    prog.passes_done = 1;
+    double radius = caustic_radius;
+    for (int pass = 2; pass <= std::max(1, params.passes) && !prog.cancel; ++pass) {
+      const caustic_pass next = shoot(s, rays, params, photon_count, pass, prog);
+      if (next.photons.stats.cancelled) break;
+      st.photons_emitted += next.photons.stats.emitted;
+      st.photons_stored += next.photons.stats.stored;
+      radius = ppm_radius(caustic_radius, pass, params.ppm_alpha);
+      grid.add_pass(next.photons.map.photons(), radius, irradiance);
+      passes = pass;
+      prog.passes_done = pass;
+    }
+    std::vector<rgb> caustic(pixel_count, rgb(0.0));
+    for (std::size_t h = 0; h < hits.size(); ++h) caustic[std::size_t(hits[h].pixel)] += hits[h].weight * irradiance[h];
+    for (std::size_t i = 0; i < pixel_count; ++i)
+      for (int ch = 0; ch < 3; ++ch) img.pixels[3 * i + ch] += float(caustic[i][ch] / passes);
+    st.passes = passes;
+    st.final_radius = radius;
+    st.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - passes_start).count();
+  }
   if (stats) {
+    *stats = st;
     stats->primary_rays = total.primary;
     stats->shadow_rays = total.shadow;
     stats->secondary_rays = total.secondary;
+    stats->gather_rays = total.gather;
+    stats->cache_misses = total.misses;
     stats->refined_pixels = refined;
     stats->cancelled = prog.cancel;
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -301,7 +301,8 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"trace --method hemicube --full-rays", "--full-rays applies to --method raycast only"},
       {"view --hemicube 64", "--hemicube applies to --method hemicube only"},
       {"solve --method hemicube --ray-baseline", "--ray-baseline applies to --method raycast only"},
-      {"trace --integrator path --light-samples 3", "--light-samples applies to --integrator whitted only"},
+      {"trace --integrator path --light-samples 3",
+       "--light-samples applies to --integrator whitted, twopass and ppm only"},
       {"trace --integrator path --direct radiosity", "--direct applies to --integrator whitted only"},
       {"trace --integrator path --no-radiosity", "--no-radiosity applies to --integrator whitted only"},
       {"trace --integrator path --max-edge 100 --until 0.1", "--max-edge, --until: the path tracer makes no radiosity"},
@@ -309,6 +310,13 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"trace --no-radiosity --direct rays", "--direct applies to two-pass stills only"},
       {"trace --no-radiosity --ambient 0.5 --max-shots 9", "--max-shots: with --no-radiosity and --ambient"},
       {"trace --spp 4 --adaptive-spp 4", "--adaptive-spp 4 must be more than --spp 4"},
+      {"trace --passes 4", "--passes applies to --integrator ppm only"},
+      {"trace --integrator twopass --passes 4", "--passes applies to --integrator ppm only"},
+      {"trace --photons 1000", "--photons applies to --integrator twopass and ppm only"},
+      {"trace --integrator path --gather-rays 64", "--gather-rays applies to --integrator twopass and ppm only"},
+      {"trace --integrator twopass --direct radiosity", "--direct applies to --integrator whitted only (twopass"},
+      {"trace --integrator ppm --no-radiosity", "--no-radiosity applies to --integrator whitted only (ppm"},
+      {"trace --integrator ppm --adaptive-spp 64", "--adaptive-spp does not apply to --integrator ppm"},
       {"trace --integrator path --spp 8 --adaptive-spp 2", "--adaptive-spp 2 must be more than --spp 8"},
       {"bench --report-only --suite full", "--suite excludes --report-only"},
       {"solve --solver hierarchical --adaptive", "--adaptive applies to --solver progressive only"},
@@ -496,6 +504,26 @@ TEST(Cli, TraceWritesPngAndPfmAndReportsRays) {
   r = run("trace --no-radiosity --size 16x16 --out " + dir.path("c.png"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("one pass: ambient irradiance"), std::string::npos) << r.out;
+}
+
+TEST(Cli, TraceTwoPassAndPpmReportPhotonsAndTheCache) {
+  scratch_dir dir;
+  // The Whitted scene has a mirror ball and a glass ball: caustic photons.
+  const std::string whitted = source_path("assets/whitted/whitted.json");
+  run_result r = run("trace " + whitted + " --integrator twopass --size 24x18 --photons 20000 --gather-rays 32" +
+                     " --max-edge 2 --until 0.05 --out " + dir.path("a.png") + " --stats " + dir.path("a.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("twopass: 20000 photons"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(twopass, 4 spp)"), std::string::npos) << r.out;  // default_spp
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("a.json")));
+  EXPECT_EQ(j["trace"]["photons"]["emitted"].get<long>(), 20000);
+  EXPECT_GT(j["trace"]["irradiance_cache"]["records"].get<long>(), 0);
+  EXPECT_TRUE(j.contains("radiosity"));
+  r = run("trace " + whitted + " --integrator ppm --passes 3 --size 16x12 --photons 5000 --gather-rays 16" +
+          " --max-edge 2 --until 0.05 --out " + dir.path("b.png") + " --stats " + dir.path("b.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("ppm: 15000 photons"), std::string::npos) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir.path("b.json")))["trace"]["photons"]["passes"].get<int>(), 3);
 }
 
 TEST(Cli, TraceRejectsBadOptionsAndFiles) {

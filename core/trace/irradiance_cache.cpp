@@ -1,0 +1,114 @@
+#include "trace/irradiance_cache.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace bounce {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// splitmix64 finaliser: a jitter in [0, 1) from a seed and a cell.
+double jitter(std::uint64_t seed, std::uint64_t k) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (k + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return double(z >> 11) * 0x1p-53;
+}
+
+}  // namespace
+
+int gather_irradiance(const vec3& position, const vec3& normal, int rays, std::uint64_t seed,
+                      const std::function<gather_sample(const vec3& dir, std::uint64_t ray_seed)>& cast,
+                      irradiance_record& out) {
+  const int m = std::max(1, int(std::lround(std::sqrt(std::max(1, rays) / pi)))),
+            n = std::max(1, int(std::lround(double(std::max(1, rays)) / m)));
+  // Orthonormal basis around the normal (Duff et al. 2017).
+  const double sign = std::copysign(1.0, normal.z);
+  const double a = -1.0 / (sign + normal.z), c = normal.x * normal.y * a;
+  const vec3 t(1.0 + sign * normal.x * normal.x * a, sign * c, -sign * normal.x),
+      b(c, sign + normal.y * normal.y * a, -normal.y);
+  rgb sum(0.0);
+  double inverse_distances = 0.0;
+  std::array<vec3, 3> rotation{vec3(0.0), vec3(0.0), vec3(0.0)};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < m; ++j) {
+      const std::uint64_t cell = std::uint64_t(k) * std::uint64_t(m) + std::uint64_t(j);
+      const double u1 = (j + jitter(seed, 2 * cell)) / m, phi = 2.0 * pi * (k + jitter(seed, 2 * cell + 1)) / n;
+      const double sin_theta = std::sqrt(u1), cos_theta = std::sqrt(std::max(0.0, 1.0 - u1));
+      const vec3 dir =
+          glm::normalize(sin_theta * std::cos(phi) * t + sin_theta * std::sin(phi) * b + cos_theta * normal);
+      const gather_sample g = cast(dir, seed ^ (0xD1B54A32D192ED03ull * (cell + 1)));
+      sum += g.radiance;
+      if (g.distance > 0.0 && std::isfinite(g.distance)) inverse_distances += 1.0 / g.distance;
+      // Turning the normal by d about u moves E by d u . (n x omega) L / cos
+      // (per cosine-weighted sample), and n x omega = sin(theta) v with v
+      // the base-plane direction a quarter turn on from phi (Ward &
+      // Heckbert 1992, whose v points the other way).
+      const vec3 v = -std::sin(phi) * t + std::cos(phi) * b;
+      const double tan_theta = sin_theta / std::max(cos_theta, 1e-3);
+      for (int ch = 0; ch < 3; ++ch) rotation[std::size_t(ch)] += v * (tan_theta * g.radiance[ch]);
+    }
+  const double scale = pi / double(m * n);
+  out.position = position;
+  out.normal = normal;
+  out.irradiance = sum * scale;
+  out.radius = inverse_distances > 0.0 ? double(m * n) / inverse_distances : std::numeric_limits<double>::infinity();
+  for (int ch = 0; ch < 3; ++ch) out.rotation[std::size_t(ch)] = rotation[std::size_t(ch)] * scale;
+  return m * n;
+}
+
+double ward_weight(const irradiance_record& r, const vec3& p, const vec3& n) {
+  const vec3 d = p - r.position;
+  // The record in front of the point: the point lies behind the tangent
+  // plane (averaged with its own) by more than a sliver of R.
+  if (glm::dot(d, r.normal + n) * 0.5 < -0.05 * r.radius) return 0.0;
+  const double e = glm::length(d) / r.radius + std::sqrt(std::max(0.0, 1.0 - glm::dot(n, r.normal)));
+  return e > 0.0 ? 1.0 / e : std::numeric_limits<double>::infinity();
+}
+
+irradiance_cache::irradiance_cache(double accuracy, double cell) : accuracy_(accuracy), cell_(cell) {}
+
+std::uint64_t irradiance_cache::key(long x, long y, long z) const {
+  constexpr std::uint64_t mask = (1ull << 21) - 1;
+  return (std::uint64_t(x) & mask) << 42 | (std::uint64_t(y) & mask) << 21 | (std::uint64_t(z) & mask);
+}
+
+void irradiance_cache::add(const irradiance_record& r) {
+  const auto index = std::uint32_t(records_.size());
+  records_.push_back(r);
+  // Into every cell the record may serve at the largest reach: weight over
+  // 1 / (a reach) needs |p - p_i| < a reach R_i.
+  const double reach = accuracy_ * max_reach * r.radius;
+  const vec3 lo = (r.position - vec3(reach)) / cell_, hi = (r.position + vec3(reach)) / cell_;
+  for (long x = long(std::floor(lo.x)); x <= long(std::floor(hi.x)); ++x)
+    for (long y = long(std::floor(lo.y)); y <= long(std::floor(hi.y)); ++y)
+      for (long z = long(std::floor(lo.z)); z <= long(std::floor(hi.z)); ++z) grid_[key(x, y, z)].push_back(index);
+}
+
+std::optional<rgb> irradiance_cache::lookup(const vec3& p, const vec3& n, double reach) const {
+  const auto it =
+      grid_.find(key(long(std::floor(p.x / cell_)), long(std::floor(p.y / cell_)), long(std::floor(p.z / cell_))));
+  if (it == grid_.end()) return std::nullopt;
+  const double threshold = 1.0 / (accuracy_ * reach);
+  rgb sum(0.0);
+  double weights = 0.0;
+  for (const std::uint32_t i : it->second) {
+    const irradiance_record& r = records_[i];
+    const double w = ward_weight(r, p, n);
+    if (!(w > threshold)) continue;
+    if (!std::isfinite(w)) return r.irradiance;  // on the record itself
+    const vec3 turn = glm::cross(r.normal, n);
+    rgb e = r.irradiance;
+    for (int ch = 0; ch < 3; ++ch) e[ch] += glm::dot(turn, r.rotation[std::size_t(ch)]);
+    sum += w * glm::max(e, rgb(0.0));
+    weights += w;
+  }
+  if (weights <= 0.0) return std::nullopt;
+  return sum / weights;
+}
+
+}  // namespace bounce
