@@ -468,7 +468,9 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
   }
   if (ImGui::CollapsingHeader("Ray-traced still", ImGuiTreeNodeFlags_DefaultOpen)) {
     still_settings& st = state.still;
-    ImGui::Combo("integrator", &st.integrator, "Whitted, two-pass\0path tracer (reference)\0");
+    ImGui::Combo("integrator", &st.integrator,
+                 "Whitted over the radiosity\0two-pass: caustics + final gather\0progressive photon mapping\0"
+                 "path tracer (reference)\0");
     ImGui::SliderInt("samples per pixel", &st.spp, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
     if (st.integrator == 0) ImGui::Combo("direct light", &st.direct, "shadow rays (sharp)\0from the radiosity\0");
     ImGui::Checkbox("at the window's size", &st.window_size);

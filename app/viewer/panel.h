@@ -15,7 +15,7 @@ namespace bounce {
 
 // Settings of the ray-traced still that the panel starts.
 struct still_settings {
-  int integrator = 0;       // 0: Whitted two-pass, 1: path tracer (reference)
+  int integrator = 0;       // 0: Whitted two-pass, 1: twopass, 2: ppm, 3: path tracer (still_params)
   int spp = 4;              // samples per pixel
   int direct = 0;           // Whitted: 0 direct light by shadow rays, 1 all diffuse light from the solution
   bool window_size = true;  // trace at the window's size, else at `size`

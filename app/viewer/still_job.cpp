@@ -1,6 +1,8 @@
 #include "still_job.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace bounce {
 
@@ -19,8 +21,19 @@ void still_job::cancel() {
 double still_job::progress() const {
   const std::lock_guard lock(mutex_);
   if (!progress_) return 0.0;
-  const long total = progress_->pixels_total;
-  return total > 0 ? std::min(1.0, double(progress_->pixels_done) / double(total)) : 0.0;
+  auto ratio = [](double done, double total) { return total > 0 ? std::min(1.0, done / total) : 0.0; };
+  const trace_progress& p = *progress_;
+  switch (p.stage.load()) {
+    case trace_stage::photons:
+      return ratio(double(p.photons.photons_done), double(p.photons.photons_total));
+    case trace_stage::cache:
+      return ratio(double(p.cache_points_done), double(p.cache_points_total));
+    case trace_stage::passes:
+      return ratio(p.passes_done, p.passes_total);
+    case trace_stage::pixels:
+      break;
+  }
+  return ratio(double(p.pixels_done), double(p.pixels_total));
 }
 
 std::shared_ptr<const still_result> still_job::result() const {
@@ -42,20 +55,46 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
     std::unique_ptr<radiosity_field> field;
     if (mesh && solution && solution->radiosity.size() == mesh->vertex_count()) {
       field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct);
-    } else if (p.method == integrator::whitted) {
+    } else if (p.method != integrator::path) {
+      // No solution yet: one-pass Whitted, with no ambient term.
+      p.method = integrator::whitted;
       p.diffuse = diffuse_source::ambient;
     }
+    auto summary = [&](const trace_stats& st, int passes) {
+      const char* kind = p.method == integrator::path      ? " path traced"
+                         : p.method == integrator::twopass ? " two-pass"
+                         : p.method == integrator::ppm     ? " photon mapped"
+                                                           : "";
+      char line[256];
+      std::snprintf(line, sizeof line, "%dx%d, %d spp%s", view.width, view.height, p.spp, kind);
+      std::string text = line;
+      if (p.method == integrator::ppm) {
+        std::snprintf(line, sizeof line, ", %d of %d photon passes", passes, p.passes);
+        text += line;
+      }
+      if (st.seconds > 0) {
+        std::snprintf(
+            line, sizeof line, ": %.2f s, %.2f Mrays/s", st.seconds,
+            double(st.primary_rays + st.shadow_rays + st.secondary_rays + st.gather_rays) / st.seconds * 1e-6);
+        text += line;
+      }
+      return text;
+    };
+    // Progressive photon mapping shows each pass's picture as it comes.
+    progress->pass_done = [&](const image& picture, int passes) {
+      auto out = std::make_shared<still_result>();
+      out->source = source;
+      out->picture = picture;
+      out->summary = summary(out->stats, passes);
+      const std::lock_guard lock(mutex_);
+      out->version = ++finished_;
+      result_ = std::move(out);
+    };
     auto out = std::make_shared<still_result>();
     out->source = source;
     out->picture = trace_image(*source, view, rays, field.get(), p, progress.get(), &out->stats);
     if (!out->stats.cancelled) {
-      const trace_stats& st = out->stats;
-      char line[256];
-      std::snprintf(
-          line, sizeof line, "%dx%d, %d spp%s: %.2f s, %.2f Mrays/s", view.width, view.height, p.spp,
-          p.method == integrator::path ? " path traced" : "", st.seconds,
-          st.seconds > 0 ? double(st.primary_rays + st.shadow_rays + st.secondary_rays) / st.seconds * 1e-6 : 0.0);
-      out->summary = line;
+      out->summary = summary(out->stats, out->stats.passes);
       const std::lock_guard lock(mutex_);
       out->version = ++finished_;
       result_ = std::move(out);

@@ -53,7 +53,8 @@ double milliseconds_since(clock_type::time_point start) {
 
 trace_params still_params(const still_settings& settings) {
   trace_params p;
-  p.method = settings.integrator == 1 ? integrator::path : integrator::whitted;
+  constexpr integrator in_panel_order[] = {integrator::whitted, integrator::twopass, integrator::ppm, integrator::path};
+  p.method = in_panel_order[std::clamp(settings.integrator, 0, 3)];
   p.spp = std::max(1, settings.spp);
   p.diffuse = settings.direct == 1 ? diffuse_source::radiosity : diffuse_source::traced_direct;
   return p;

@@ -688,9 +688,20 @@ image trace_image(const scene& s, const camera& view, const ray_scene& rays, con
     prog.stage = trace_stage::passes;
     const caustic_hit_grid grid(hits, caustic_radius);
     std::vector<rgb> irradiance(hits.size(), rgb(0.0));
+    // The picture with the caustic of `passes` passes: their mean.
+    auto with_caustic = [&](int passes) {
+      std::vector<rgb> caustic(pixel_count, rgb(0.0));
+      for (std::size_t h = 0; h < hits.size(); ++h)
+        caustic[std::size_t(hits[h].pixel)] += hits[h].weight * irradiance[h];
+      image out = img;
+      for (std::size_t i = 0; i < pixel_count; ++i)
+        for (int ch = 0; ch < 3; ++ch) out.pixels[3 * i + ch] += float(caustic[i][ch] / passes);
+      return out;
+    };
     grid.add_pass(first.photons.map.photons(), caustic_radius, irradiance);
     int passes = 1;
     prog.passes_done = 1;
+    if (prog.pass_done) prog.pass_done(with_caustic(1), 1);
     double radius = caustic_radius;
     for (int pass = 2; pass <= std::max(1, params.passes) && !prog.cancel; ++pass) {
       const caustic_pass next = shoot(s, rays, params, photon_count, pass, prog);
@@ -701,11 +712,9 @@ image trace_image(const scene& s, const camera& view, const ray_scene& rays, con
       grid.add_pass(next.photons.map.photons(), radius, irradiance);
       passes = pass;
       prog.passes_done = pass;
+      if (prog.pass_done && pass < params.passes) prog.pass_done(with_caustic(pass), pass);
     }
-    std::vector<rgb> caustic(pixel_count, rgb(0.0));
-    for (std::size_t h = 0; h < hits.size(); ++h) caustic[std::size_t(hits[h].pixel)] += hits[h].weight * irradiance[h];
-    for (std::size_t i = 0; i < pixel_count; ++i)
-      for (int ch = 0; ch < 3; ++ch) img.pixels[3 * i + ch] += float(caustic[i][ch] / passes);
+    img = with_caustic(passes);
     st.passes = passes;
     st.final_radius = radius;
     st.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - passes_start).count();

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 
 #include "image/image.h"
 #include "radiosity/radiosity_field.h"
@@ -73,6 +74,10 @@ struct trace_progress {
   std::atomic<long> cache_points_total{0};
   std::atomic<int> passes_done{0};  // ppm
   std::atomic<int> passes_total{0};
+  // ppm: called on the tracing thread after each photon pass with the
+  // picture so far (the passes' mean caustic), so that a window can show
+  // the caustic sharpening. Set before trace_image starts.
+  std::function<void(const image& picture, int passes)> pass_done;
 };
 
 struct trace_stats {

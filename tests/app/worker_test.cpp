@@ -10,6 +10,7 @@
 #include "mesh_builders.h"
 #include "scene/scene_io.h"
 #include "solver_worker.h"
+#include "still_job.h"
 #include "test_files.h"
 
 namespace bounce {
@@ -243,6 +244,47 @@ TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
   EXPECT_EQ(status.last->seconds, worker.latest()->solution->stats.seconds);
   EXPECT_LE(status.last->unshot_fraction, 1e-3);
   EXPECT_FALSE(tracker.status("another setting").last.has_value());
+}
+
+// The window's still with progressive photon mapping shows each photon
+// pass as it comes: results with rising versions before the last, each
+// saying how many passes it holds, then the finished still.
+TEST(StillJob, ProgressivePhotonMappingShowsItsPasses) {
+  solver_worker worker;
+  solver_settings settings = coarse(1e-2);
+  settings.max_edge = 0.3;  // metres
+  worker.load_file(testing::source_path("assets/glass_on_table/glass_on_table.json"), settings);
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ASSERT_TRUE(view->mesh && view->solution);
+  camera cam = view->source->view;
+  cam.width = cam.height = 24;
+  trace_params params;
+  params.method = integrator::ppm;
+  params.spp = 1;
+  params.passes = 4;
+  params.photons = 20000;
+  params.gather_rays = 16;
+  still_job job;
+  job.start(view->source, cam, view->mesh, view->solution, params);
+  std::vector<std::string> summaries;
+  std::uint64_t seen = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const bool running = job.running();
+    if (const auto r = job.result(); r && r->version != seen) {
+      seen = r->version;
+      summaries.push_back(r->summary);
+      EXPECT_EQ(r->picture.width, 24);
+    }
+    if (!running && job.result() && job.result()->version == seen) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_FALSE(summaries.empty());
+  EXPECT_NE(summaries.back().find("4 of 4 photon passes"), std::string::npos) << summaries.back();
+  // The passes before the last were published too (the polling may miss some).
+  EXPECT_GE(summaries.size(), 2u);
+  EXPECT_NE(summaries.front().find(" of 4 photon passes"), std::string::npos) << summaries.front();
 }
 
 }  // namespace
