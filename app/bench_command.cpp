@@ -21,6 +21,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench_rays.h"
 #include "bench_references.h"
 #include "bench_suites.h"
 #include "cli.h"
@@ -202,6 +203,8 @@ std::string failure_of(const child_usage& u) {
   return "the run failed (exit status " + std::to_string(u.status) + ")";
 }
 
+}  // namespace
+
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);)
@@ -209,15 +212,15 @@ std::string cpu_model() {
   return "unknown";
 }
 
-}  // namespace
-
 void add_bench_options(CLI::App& command, bench_options& options) {
   CLI::Option* suite =
       command
-          .add_option("--suite", options.suite,
-                      "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
-                      "(Cornell box); scale: procedural scenes of 10k to 1M triangles, hierarchical vs progressive")
-          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical"}))
+          .add_option(
+              "--suite", options.suite,
+              "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
+              "(Cornell box); scale: procedural scenes of 10k to 1M triangles, hierarchical vs progressive; rays: "
+              "the ray core's rays/s against Embree's own on the same rays")
+          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical", "rays"}))
           ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();
@@ -235,6 +238,7 @@ void add_bench_options(CLI::App& command, bench_options& options) {
 }
 
 int run_bench_command(const bench_options& options) {
+  if (options.suite == "rays") return run_ray_bench(options);  // one process, no cases
   const suite_plan plan = make_suite(options.suite);
   if (options.run_case >= 0) {
     if (options.run_case >= int(plan.cases.size())) {

@@ -15,7 +15,7 @@ class App;
 namespace bounce {
 
 struct bench_options {
-  std::string suite = "quick";  // quick (under 2 minutes) | full (under 20) | adaptive | scale
+  std::string suite = "quick";  // quick (under 2 minutes) | full (under 20) | adaptive | scale | hierarchical | rays
   std::string out_dir = "bench-out";
   bool report_only = false;  // rewrite the report from out_dir/bench.json, run nothing
   int threads = 0;           // thread limit of every run (tbb::global_control); 0: every core
@@ -23,6 +23,9 @@ struct bench_options {
 };
 
 void add_bench_options(CLI::App& command, bench_options& options);
+
+// The CPU's model name from /proc/cpuinfo ("unknown" if absent), for reports.
+std::string cpu_model();
 int run_bench_command(const bench_options& options);
 
 // The report from the collected results (bench.json's contents): CSV,

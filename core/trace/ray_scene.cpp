@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "base/embree_device.h"
@@ -65,9 +69,8 @@ struct analytic_shape {
     });
   }
 
-  vec3 normal(const vec3& p) const {
-    return is_sphere ? glm::normalize(p - ball.center) : glm::normalize(quadric_gradient(q, p));
-  }
+  vec3 gradient(const vec3& p) const { return is_sphere ? p - ball.center : quadric_gradient(q, p); }
+  vec3 normal(const vec3& p) const { return glm::normalize(gradient(p)); }
 
   // Spheres: longitude and latitude, v = 1 at the top (+y), where an
   // image's top row goes. Quadrics have no natural parameters: cylindrical
@@ -97,17 +100,53 @@ void analytic_bounds(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_z = std::nextafter(float(hi.z), INFINITY);
 }
 
+// The closest-hit queries' context: Embree's, followed by the caller's
+// rays in double (indexed by the rays' id), so that spheres and quadrics
+// are intersected with the exact ray once, in the callback, and the root
+// found there is the hit's t (Embree passes the context's address through
+// to the callbacks; RTCIntersectContext must come first).
+struct double_rays_context {
+  RTCIntersectContext embree;
+  const vec3* origins = nullptr;  // nullptr: the callbacks use Embree's float rays
+  const vec3* directions = nullptr;
+  double t_min = 0.0, t_max = INFINITY;
+  // Per ray id: the analytic geometry whose hit was accepted last (the
+  // closest so far: Embree only offers hits nearer than the current one)
+  // and its exact t.
+  unsigned geom_id[16];
+  double t[16];
+
+  double_rays_context() {
+    rtcInitIntersectContext(&embree);
+    std::fill(std::begin(geom_id), std::end(geom_id), RTC_INVALID_GEOMETRY_ID);
+  }
+};
+static_assert(offsetof(double_rays_context, embree) == 0);
+
 void analytic_intersect(const RTCIntersectFunctionNArguments* args) {
   const auto* shape = static_cast<const analytic_shape*>(args->geometryUserPtr);
+  auto* context = reinterpret_cast<double_rays_context*>(args->context);
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   for (unsigned i = 0; i < args->N; ++i) {
     if (!args->valid[i]) continue;
-    const vec3 o(RTCRayN_org_x(rays, args->N, i), RTCRayN_org_y(rays, args->N, i), RTCRayN_org_z(rays, args->N, i));
-    const vec3 d(RTCRayN_dir_x(rays, args->N, i), RTCRayN_dir_y(rays, args->N, i), RTCRayN_dir_z(rays, args->N, i));
-    const auto t = shape->hit(o, d, RTCRayN_tnear(rays, args->N, i), RTCRayN_tfar(rays, args->N, i));
+    const unsigned id = RTCRayN_id(rays, args->N, i);
+    const bool exact = context->origins != nullptr;
+    const vec3 o =
+        exact ? context->origins[id]
+              : vec3(RTCRayN_org_x(rays, args->N, i), RTCRayN_org_y(rays, args->N, i), RTCRayN_org_z(rays, args->N, i));
+    const vec3 d =
+        exact ? context->directions[id]
+              : vec3(RTCRayN_dir_x(rays, args->N, i), RTCRayN_dir_y(rays, args->N, i), RTCRayN_dir_z(rays, args->N, i));
+    const double far = RTCRayN_tfar(rays, args->N, i);
+    const auto t = exact ? shape->hit(o, d, context->t_min, std::min(context->t_max, far))
+                         : shape->hit(o, d, RTCRayN_tnear(rays, args->N, i), far);
     if (!t) continue;
-    const vec3 n = shape->normal(o + *t * d);
+    if (exact) {
+      context->geom_id[id] = args->geomID;
+      context->t[id] = *t;
+    }
+    const vec3 n = shape->gradient(o + *t * d);  // Embree's Ng need not be unit length (nothing here reads it)
     RTCRayN_tfar(rays, args->N, i) = float(*t);
     RTCHitN_Ng_x(hits, args->N, i) = float(n.x);
     RTCHitN_Ng_y(hits, args->N, i) = float(n.y);
@@ -158,6 +197,12 @@ struct ray_scene::embree_state {
   std::vector<bool> sampled_surfaces;
 
   void add_emitters(const bounce::scene& s, const geometry& g);
+  // The hit Embree found (in floats), recomputed in double from the
+  // caller's double ray.
+  // `context` holds the exact t of analytic hits, from the callback.
+  ray_hit hit_of(unsigned geom_id, unsigned prim_id, float u, float v, float t_float, const vec3& origin,
+                 const vec3& direction, double t_min, double t_max, const double_rays_context& context,
+                 unsigned ray_id) const;
 };
 
 ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_unique<embree_state>()) {
@@ -298,8 +343,11 @@ ray_scene::~ray_scene() {
 
 std::optional<ray_hit> ray_scene::intersect(const vec3& origin, const vec3& direction, double t_min,
                                             double t_max) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  double_rays_context context;
+  context.origins = &origin;
+  context.directions = &direction;
+  context.t_min = t_min;
+  context.t_max = t_max;
   RTCRayHit rh{};
   rh.ray.org_x = float(origin.x);
   rh.ray.org_y = float(origin.y);
@@ -310,22 +358,32 @@ std::optional<ray_hit> ray_scene::intersect(const vec3& origin, const vec3& dire
   rh.ray.tnear = float(t_min);
   rh.ray.tfar = std::isinf(t_max) ? INFINITY : float(t_max);
   rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(state_->scene, &context, &rh);
+  rtcIntersect1(state_->scene, &context.embree, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return state_->hit_of(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, origin, direction, t_min, t_max,
+                        context, 0);
+}
 
+ray_hit ray_scene::embree_state::hit_of(unsigned geom_id, unsigned prim_id, float u_float, float v_float, float t_float,
+                                        const vec3& origin, const vec3& direction, double t_min, double t_max,
+                                        const double_rays_context& context, unsigned ray_id) const {
   // Embree chose the closest surface in floats; the hit itself is
   // recomputed in double from the caller's double ray.
-  const embree_state::geometry& g = state_->geometries[rh.hit.geomID];
+  const geometry& g = geometries[geom_id];
   ray_hit hit;
   hit.surface = g.surface;
   if (g.shape) {
-    // The exact root nearest the float one (Embree's t is accurate to
-    // float precision; widen its window by a relative 1e-5).
-    const double t_float = rh.ray.tfar;
-    auto t = g.shape->hit(origin, direction, std::max(t_min, t_float * (1 - 1e-5) - 1e-300),
-                          std::min(t_max, t_float * (1 + 1e-5) + 1e-300));
-    hit.t = t ? *t : t_float;
+    if (context.origins && context.geom_id[ray_id] == geom_id) {
+      hit.t = context.t[ray_id];  // the callback's root, on this very ray
+    } else {
+      // The exact root nearest the float one (Embree's t is accurate to
+      // float precision; widen its window by a relative 1e-5).
+      auto t = g.shape->hit(origin, direction, std::max(t_min, t_float * (1 - 1e-5) - 1e-300),
+                            std::min(t_max, t_float * (1 + 1e-5) + 1e-300));
+      hit.t = t ? *t : t_float;
+    }
     hit.point = origin + hit.t * direction;
     hit.normal = g.shape->normal(hit.point);
     hit.face_normal = hit.normal;
@@ -334,18 +392,155 @@ std::optional<ray_hit> ray_scene::intersect(const vec3& origin, const vec3& dire
     return hit;
   }
   const triangle_mesh& m = g.triangles;
-  const glm::ivec3 tri = m.triangles[rh.hit.primID];
+  const glm::ivec3 tri = m.triangles[prim_id];
   const vec3 p0 = m.positions[tri[0]], p1 = m.positions[tri[1]], p2 = m.positions[tri[2]];
   const vec3 face = glm::normalize(glm::cross(p1 - p0, p2 - p0));
   hit.t = glm::dot(face, p0 - origin) / glm::dot(face, direction);  // the plane, in double
   hit.point = origin + hit.t * direction;
-  const double u = rh.hit.u, v = rh.hit.v;
+  const double u = u_float, v = v_float;
   const vec3 shading = (1 - u - v) * m.normals[tri[0]] + u * m.normals[tri[1]] + v * m.normals[tri[2]];
   hit.normal = glm::length(shading) > 0 ? glm::normalize(shading) : face;
   hit.face_normal = face;
   hit.uv = (1 - u - v) * m.uvs[tri[0]] + u * m.uvs[tri[1]] + v * m.uvs[tri[2]];
-  hit.material = m.materials[rh.hit.primID];
+  hit.material = m.materials[prim_id];
   return hit;
+}
+
+void ray_scene::intersect_packets(std::span<const vec3> origins, std::span<const vec3> directions,
+                                  std::span<std::optional<ray_hit>> hits, double t_min, double t_max) const {
+  if (origins.size() != directions.size() || origins.size() != hits.size())
+    throw std::invalid_argument("ray_scene::intersect_packets: " + std::to_string(origins.size()) + " origins, " +
+                                std::to_string(directions.size()) + " directions and " + std::to_string(hits.size()) +
+                                " hits");
+  const float near = float(t_min), far = std::isinf(t_max) ? INFINITY : float(t_max);
+  for (std::size_t begin = 0; begin < origins.size(); begin += 8) {
+    const std::size_t count = std::min<std::size_t>(8, origins.size() - begin);
+    double_rays_context context;  // ray id i is origins[begin + i]
+    context.origins = origins.data() + begin;
+    context.directions = directions.data() + begin;
+    context.t_min = t_min;
+    context.t_max = t_max;
+    alignas(32) int valid[8];
+    RTCRayHit8 rh;  // aligned by its type
+    for (std::size_t i = 0; i < 8; ++i) {
+      // Lanes past the end are switched off, and hold the last ray so
+      // that nothing Embree reads is garbage.
+      valid[i] = i < count ? -1 : 0;
+      const std::size_t k = begin + std::min(i, count - 1);
+      rh.ray.org_x[i] = float(origins[k].x);
+      rh.ray.org_y[i] = float(origins[k].y);
+      rh.ray.org_z[i] = float(origins[k].z);
+      rh.ray.dir_x[i] = float(directions[k].x);
+      rh.ray.dir_y[i] = float(directions[k].y);
+      rh.ray.dir_z[i] = float(directions[k].z);
+      rh.ray.tnear[i] = near;
+      rh.ray.tfar[i] = far;
+      rh.ray.time[i] = 0.0f;
+      rh.ray.mask[i] = 0xFFFFFFFFu;
+      rh.ray.id[i] = unsigned(k - begin);  // which of the context's double rays
+      rh.ray.flags[i] = 0;
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, state_->scene, &context.embree, &rh);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t k = begin + i;
+      if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID)
+        hits[k].reset();
+      else
+        hits[k] = state_->hit_of(rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i],
+                                 origins[k], directions[k], t_min, t_max, context, unsigned(i));
+    }
+  }
+}
+
+namespace {
+
+// Embree's closest hits of `rays` in packets of K (rayhit_k: RTCRayHit4,
+// 8 or 16), as a renderer using Embree directly would cast them.
+template <int K, typename rayhit_k>
+std::size_t closest_hits_k(RTCScene scene, std::span<const float_ray> rays, float* t_hit,
+                           void (*intersect_k)(const int*, RTCScene, RTCIntersectContext*, rayhit_k*)) {
+  double_rays_context context;  // no double rays: the callbacks use Embree's float ones
+  std::size_t hit_count = 0;
+  for (std::size_t begin = 0; begin < rays.size(); begin += K) {
+    const std::size_t count = std::min<std::size_t>(K, rays.size() - begin);
+    alignas(4 * K) int valid[K];
+    rayhit_k rh;  // aligned by its type
+    for (std::size_t i = 0; i < std::size_t(K); ++i) {
+      valid[i] = i < count ? -1 : 0;
+      const float_ray& r = rays[begin + std::min(i, count - 1)];
+      rh.ray.org_x[i] = r.origin[0];
+      rh.ray.org_y[i] = r.origin[1];
+      rh.ray.org_z[i] = r.origin[2];
+      rh.ray.dir_x[i] = r.direction[0];
+      rh.ray.dir_y[i] = r.direction[1];
+      rh.ray.dir_z[i] = r.direction[2];
+      rh.ray.tnear[i] = r.t_min;
+      rh.ray.tfar[i] = r.t_max;
+      rh.ray.time[i] = 0.0f;
+      rh.ray.mask[i] = 0xFFFFFFFFu;
+      rh.ray.id[i] = unsigned(i);
+      rh.ray.flags[i] = 0;
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    intersect_k(valid, scene, &context.embree, &rh);
+    for (std::size_t i = 0; i < count; ++i) {
+      const bool hit = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+      hit_count += hit;
+      if (t_hit) t_hit[begin + i] = hit ? rh.ray.tfar[i] : INFINITY;
+    }
+  }
+  return hit_count;
+}
+
+}  // namespace
+
+std::size_t ray_scene::embree_closest_hits(std::span<const float_ray> rays, int width, float* t_hit) const {
+  switch (width) {
+    case 4:
+      return closest_hits_k<4>(state_->scene, rays, t_hit, rtcIntersect4);
+    case 8:
+      return closest_hits_k<8>(state_->scene, rays, t_hit, rtcIntersect8);
+    case 16:
+      return closest_hits_k<16>(state_->scene, rays, t_hit, rtcIntersect16);
+    case 1:
+      break;
+    default:
+      throw std::invalid_argument("ray_scene::embree_closest_hits: packets of " + std::to_string(width) +
+                                  " (expected 1, 4, 8 or 16)");
+  }
+  double_rays_context context;  // no double rays: the callbacks use Embree's float ones
+  std::size_t hit_count = 0;
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    const float_ray& r = rays[k];
+    RTCRayHit rh{};
+    rh.ray.org_x = r.origin[0];
+    rh.ray.org_y = r.origin[1];
+    rh.ray.org_z = r.origin[2];
+    rh.ray.dir_x = r.direction[0];
+    rh.ray.dir_y = r.direction[1];
+    rh.ray.dir_z = r.direction[2];
+    rh.ray.tnear = r.t_min;
+    rh.ray.tfar = r.t_max;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(state_->scene, &context.embree, &rh);
+    const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    hit_count += hit;
+    if (t_hit) t_hit[k] = hit ? rh.ray.tfar : INFINITY;
+  }
+  return hit_count;
+}
+
+bool ray_scene::native_packet(int width) {
+  const RTCDeviceProperty property = width == 4    ? RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED
+                                     : width == 8  ? RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED
+                                     : width == 16 ? RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED
+                                                   : RTC_DEVICE_PROPERTY_VERSION;
+  if (property == RTC_DEVICE_PROPERTY_VERSION) return false;
+  return rtcGetDeviceProperty(embree_device(), property) != 0;
 }
 
 bool ray_scene::occluded(const vec3& from, const vec3& to) const {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include "scene/scene.h"
 
@@ -20,6 +21,14 @@ struct ray_hit {
   vec2 uv{0.0};
   int surface = -1;
   int material = -1;
+};
+
+// A ray in floats, as Embree stores it (ray_scene::embree_closest_hits).
+struct float_ray {
+  float origin[3];
+  float direction[3];
+  float t_min = 0.0f;
+  float t_max = std::numeric_limits<float>::infinity();
 };
 
 // A point on the emitting surfaces, drawn uniformly by area.
@@ -46,6 +55,29 @@ class ray_scene {
   // ray_scene.cpp): a bare epsilon on t is not enough for grazing rays.
   std::optional<ray_hit> intersect(const vec3& origin, const vec3& direction, double t_min = 0.0,
                                    double t_max = std::numeric_limits<double>::infinity()) const;
+
+  // The closest hits of many rays over one t range, traced in Embree's
+  // 8-wide packets (rtcIntersect8): for coherent rays, such as a tile's
+  // primary rays or one pixel's samples, faster than one intersect() each
+  // (docs/performance.md, "Ray core"). hits[i] is what intersect(origins[i],
+  // directions[i], t_min, t_max) returns, up to float round-off in
+  // Embree's barycentrics. The three spans must be of one size
+  // (std::invalid_argument otherwise).
+  void intersect_packets(std::span<const vec3> origins, std::span<const vec3> directions,
+                         std::span<std::optional<ray_hit>> hits, double t_min = 0.0,
+                         double t_max = std::numeric_limits<double>::infinity()) const;
+
+  // Embree's closest-hit query and nothing else (no hit recomputed in
+  // double, no shading data), to measure the ray core against
+  // (measure/ray_throughput.h): one rtcIntersect1 call per ray (width 1)
+  // or packets of rtcIntersect4/8/16 (width 4, 8, 16; other widths throw
+  // std::invalid_argument). Returns how many rays hit something; `t_hit`,
+  // if given, receives each ray's float t (infinity for a miss).
+  std::size_t embree_closest_hits(std::span<const float_ray> rays, int width, float* t_hit = nullptr) const;
+
+  // Whether this CPU runs Embree's packets of `width` (4, 8, 16) natively
+  // rather than as narrower ones.
+  static bool native_packet(int width);
 
   // Whether anything lies strictly between two points.
   bool occluded(const vec3& from, const vec3& to) const;
