@@ -32,15 +32,20 @@ glm::dmat4 projection_matrix(const camera& c, const bounds3& bounds) {
   return glm::perspective(glm::radians(c.fov_y_degrees), double(c.width) / double(c.height), near_plane, far_plane);
 }
 
-vec3 camera_ray_direction(const camera& c, double x, double y) {
+camera_rays::camera_rays(const camera& c) {
   const vec3 forward = glm::normalize(c.target - c.eye);
   const vec3 right = glm::normalize(glm::cross(forward, c.up));
   const vec3 up = glm::cross(right, forward);
   const double half_height = std::tan(glm::radians(c.fov_y_degrees) * 0.5);
   const double half_width = half_height * double(c.width) / double(c.height);
-  const double u = (2.0 * x / c.width - 1.0) * half_width;
-  const double v = (1.0 - 2.0 * y / c.height) * half_height;
-  return glm::normalize(forward + right * u + up * v);
+  // u = (2 x / width - 1) half_width along right, v = (1 - 2 y / height) half_height along up.
+  corner = forward - right * half_width + up * half_height;
+  dx = right * (2.0 * half_width / c.width);
+  dy = -up * (2.0 * half_height / c.height);
+}
+
+vec3 camera_ray_direction(const camera& c, double x, double y) {
+  return camera_rays(c).direction(x, y);
 }
 
 }  // namespace bounce

@@ -115,7 +115,7 @@ struct surface_point {
 class tracer {
  public:
   tracer(const scene& s, const camera& view, const ray_scene& rays, const radiosity_field* field, const trace_params& p)
-      : s_(s), view_(view), rays_(rays), field_(field), p_(p), offset_(rays.surface_offset()) {
+      : s_(s), view_(view), camera_(view), rays_(rays), field_(field), p_(p), offset_(rays.surface_offset()) {
     for (const texture& tex : s.textures) texture_means_.push_back(texture_mean(tex));
     const bounds3 b = scene_bounds(s);
     scene_diagonal_ = std::max(glm::length(b.max - b.min), 1e-12);
@@ -134,7 +134,7 @@ class tracer {
   // The diffuse points that pixel (x, y)'s centre reaches through its
   // specular tree, as whitted() follows it.
   void shading_points(int x, int y, std::vector<cache_point>& out) const {
-    const vec3 d = camera_ray_direction(view_, x + 0.5, y + 0.5);
+    const vec3 d = camera_.direction(x + 0.5, y + 0.5);
     shading_points(view_.eye, d, 0, rgb(1.0), 0.0, y * view_.width + x, out);
   }
 
@@ -170,7 +170,7 @@ class tracer {
     const std::size_t first_hit = c.hits ? c.hits->size() : 0;
     c.pixel = y * view_.width + x;
     for (const vec2& o : offsets) {
-      const vec3 d = camera_ray_direction(view_, x + o.x, y + o.y);
+      const vec3 d = camera_.direction(x + o.x, y + o.y);
       ++c.primary;
       sum += p_.method == integrator::path ? path(view_.eye, d, rng, c) : whitted(view_.eye, d, 0, rgb(1.0), rng, c);
     }
@@ -490,6 +490,7 @@ class tracer {
 
   const scene& s_;
   const camera& view_;
+  const camera_rays camera_;  // the view's basis, once for all its rays
   const ray_scene& rays_;
   const radiosity_field* field_;
   trace_params p_;
