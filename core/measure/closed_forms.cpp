@@ -14,6 +14,17 @@ double corner_point_rectangle(double a, double b, double c) {
           y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y)));
 }
 
+double point_parallel_rectangle(double x0, double x1, double y0, double y1, double c) {
+  // The corner term is odd in each side: signed sides add and subtract.
+  return corner_point_rectangle(x1, y1, c) - corner_point_rectangle(x0, y1, c) - corner_point_rectangle(x1, y0, c) +
+         corner_point_rectangle(x0, y0, c);
+}
+
+double mirrored_point_parallel_rectangle(double x0, double x1, double y0, double y1, double emitter_height,
+                                         double mirror_height, double kr) {
+  return kr * point_parallel_rectangle(x0, x1, y0, y1, 2.0 * mirror_height - emitter_height);
+}
+
 double parallel_rectangles(double a, double b, double c) {
   const double x = a / c, y = b / c;
   return 2.0 / (pi * x * y) *

@@ -8,6 +8,19 @@ namespace bounce {
 // Point under the corner of an a x b rectangle at height c, facing it.
 double corner_point_rectangle(double a, double b, double c);
 
+// Point facing a parallel rectangle [x0, x1] x [y0, y1] at distance c,
+// in coordinates of the rectangle's plane with the point's foot at the
+// origin: four corner terms added with their signs (superposition).
+double point_parallel_rectangle(double x0, double x1, double y0, double y1, double c);
+
+// The same rectangle seen in a planar mirror (its mirror image, Wallace,
+// Cohen & Greenberg 1987): the point faces up at height 0, the rectangle
+// at `emitter_height` faces up too (away from the point: it is hidden),
+// and a mirror parallel to both at `mirror_height` above it faces down
+// with reflectance kr; the point sees the image at 2 mirror - emitter.
+double mirrored_point_parallel_rectangle(double x0, double x1, double y0, double y1, double emitter_height,
+                                         double mirror_height, double kr);
+
 // Two directly opposed parallel a x b rectangles at distance c.
 double parallel_rectangles(double a, double b, double c);
 

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "base/parallel.h"
+#include "radiosity/mirror_images.h"
 #include "radiosity/occlusion.h"
 
 namespace bounce {
@@ -72,7 +73,8 @@ void stratified_points(const vec3& a, const vec3& b, const vec3& c, int m, pair_
 
 struct raycast_query {
   const form_factor_context& context;
-  int grid;  // shadow rays per (sub-)shooter: grid x grid
+  int grid;                    // shadow rays per (sub-)shooter: grid x grid
+  const mirror_path& through;  // a mirror image's mirrors (empty: a real shooter)
 
   // Fraction of `count` stratified rays from the receiver to the triangle
   // that are unblocked.
@@ -91,6 +93,12 @@ struct raycast_query {
       const double length = glm::length(inward);
       const double pull = std::min(context.offset, 0.5 * length);
       targets[i] += shooter_normal * context.offset + (length > 0.0 ? inward * (pull / length) : vec3(0.0));
+    }
+    if (through.count > 0) {  // a mirror image: each ray bends at its mirrors
+      int seen = 0;
+      for (int i = 0; i < count; ++i) seen += visible_through_mirrors(context, through, from, targets[i]) ? 1 : 0;
+      rays += std::uint64_t(count) * std::uint64_t(through.count + 1);
+      return seen;
     }
     rays += count;
     return context.occlusion->count_unblocked(from, std::span(targets.data(), count));
@@ -141,9 +149,11 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, const sho
   const vec3 shooter_normal = from.normal;
   // Each shooter has its own jitter stream. When patches are the elements
   // their indices coincide, so both paths give identical form factors.
-  const std::uint64_t shooter_id = std::uint64_t(from.element >= 0 ? from.element : from.patch);
+  std::uint64_t shooter_id = std::uint64_t(from.element >= 0 ? from.element : from.patch);
+  for (int i = 0; i < from.through.count; ++i)
+    shooter_id = mix(shooter_id ^ std::uint64_t(from.through.mirrors[i] + 1));
   const int grid = std::clamp(int(std::ceil(std::sqrt(double(std::max(context.params.shadow_rays, 1))) - 1e-9)), 1, 8);
-  const raycast_query query{context, grid};
+  const raycast_query query{context, grid, from.through};
   std::atomic<std::uint64_t> total_rays{0};
   // A receiver in the shooter's plane sees it edge-on: F = 0. That covers
   // the shooter's own vertices and its flat neighbours, which round-off
@@ -213,7 +223,8 @@ form_factor_context make_form_factor_context(const patch_mesh& mesh, const form_
 namespace {
 
 std::uint64_t shoot(const form_factor_context& context, const shooter& from, std::span<double> out) {
-  if (context.params.method == form_factor_method::hemicube) return hemicube_form_factors(context, from, out);
+  if (context.params.method == form_factor_method::hemicube && from.through.count == 0)
+    return hemicube_form_factors(context, from, out);
   return raycast_form_factors(context, from, {}, out, {});
 }
 

@@ -17,6 +17,7 @@
 namespace bounce {
 
 class occlusion_scene;
+struct mirror_set;
 
 // Lambert's contour formula: the exact unoccluded form factor from a
 // differential area at p (unit normal n) to a planar polygon, after clipping
@@ -40,7 +41,17 @@ struct form_factor_params {
   // hemicube (Cohen & Greenberg 1985): pixels along the top face's side
   int hemicube_resolution = 128;
   std::uint64_t seed = 1;  // jitter of the shadow rays; F(v, e) depends on (seed, v, e) only
-  bool parallel = true;    // TBB over receivers (raycast) or hemicube faces
+  // Light by way of mirrors and glass, in scenes whose materials have kr or
+  // kt: through planar mirrors by mirror images, to `mirror_depth`
+  // reflections (mirror_images.h); through curved mirrors and glass by
+  // `specular_paths` traced paths per shot, each followed through up to
+  // `specular_bounces` specular events (specular_paths.h). Off: mirrors and
+  // glass are their diffuse part alone (glass casts an opaque shadow).
+  bool specular_transfer = true;
+  int mirror_depth = 2;
+  int specular_paths = 1024;
+  int specular_bounces = 16;
+  bool parallel = true;  // TBB over receivers (raycast) or hemicube faces
 };
 
 // What a method needs that lasts across shots: the Embree scene, each
@@ -51,6 +62,9 @@ struct form_factor_context {
   std::shared_ptr<const occlusion_scene> occlusion;
   std::vector<double> vertex_areas;  // a third of the incident elements' area
   double offset = 0.0;               // self-intersection offset, see make_form_factor_context
+  // Planar mirrors (mirror_images.h), for shooters seen through them; set
+  // by the solver (the mesher's mesh does not know the materials), may be null.
+  std::shared_ptr<const mirror_set> mirrors;
 };
 
 form_factor_context make_form_factor_context(const patch_mesh& mesh, const form_factor_params& params);
@@ -63,13 +77,26 @@ std::uint64_t form_factors_to_element(const form_factor_context& context, int el
 // shooter (what the progressive solver shoots). Returns the rays cast.
 std::uint64_t form_factors_to_patch(const form_factor_context& context, int patch, std::span<double> out);
 
-// A shooting triangle: an element, or a patch that elements tile.
+// Planar mirrors a shooter is seen through (mirror_images.h): indices into
+// the context's mirror set, the receiver's side first, and the product of
+// their reflectances.
+inline constexpr int max_mirror_depth = 4;
+struct mirror_path {
+  std::array<int, max_mirror_depth> mirrors{};
+  int count = 0;
+  rgb kr{1.0};
+};
+
+// A shooting triangle: an element, or a patch that elements tile; or the
+// mirror image of one (Wallace, Cohen & Greenberg 1987), then seen only
+// through its mirrors (`through`) and always by ray casting.
 struct shooter {
   std::array<vec3, 3> corners;
   vec3 normal{0.0};
   double area = 0.0;
-  int element = -1;  // the element itself, or -1 for a patch
-  int patch = -1;    // the patch whose elements it covers, or -1 for an element
+  int element = -1;     // the element itself, or -1 for a patch
+  int patch = -1;       // the patch whose elements it covers, or -1 for an element
+  mirror_path through;  // empty for a real shooter
   // Whether an element is part of the shooter (it does not see itself).
   bool contains(const patch_mesh& mesh, std::size_t e) const {
     return element >= 0 ? int(e) == element : mesh.element_patches[e] == patch;

@@ -18,6 +18,7 @@
 #include "mesh/patch_mesh.h"
 #include "radiosity/occlusion.h"
 #include "radiosity/point_lights.h"
+#include "radiosity/specular_paths.h"
 
 namespace bounce {
 namespace {
@@ -450,6 +451,36 @@ void update_normalizer(hierarchical_solver& solver) {
     if (sum[e].r > 0.0) solver.normalizer[e] = 1.0 / sum[e].r;
 }
 
+// The lamp's direct part: the point lights straight, not by way of mirrors and glass.
+rgb direct_lamp(const hierarchical_solver& solver, std::size_t e) {
+  return solver.specular_lamp.empty() ? solver.lamp[e] : solver.lamp[e] - solver.specular_lamp[e];
+}
+
+// The light of the emitters and point lights by way of mirrors and glass,
+// per element of the input mesh (the mean of its vertices'), or nothing
+// when the transfer is off or the scene has nothing specular.
+std::vector<rgb> specular_lamp_of(const hierarchical_solver& solver, std::uint64_t& rays) {
+  const scene& s = *solver.source;
+  const form_factor_params& p = solver.context.params;
+  if (!p.specular_transfer || !has_specular_materials(s)) return {};
+  const patch_mesh& mesh = *solver.input_mesh;
+  form_factor_context context = solver.context;  // with the vertices' areas, which the paths deposit over
+  context.mesh = &mesh;
+  context.vertex_areas.assign(mesh.vertex_count(), 0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) context.vertex_areas[std::size_t(mesh.elements[e][k])] += mesh.element_areas[e] / 3.0;
+  const std::shared_ptr<const specular_surfaces> surfaces =
+      p.specular_paths > 0 ? find_specular_surfaces(s, mesh, context.mirrors.get()) : nullptr;
+  if (!surfaces && !context.mirrors) return {};
+  const std::vector<rgb> vertex = specular_light_from_sources(s, context, surfaces.get(), rays);
+  std::vector<rgb> out(mesh.element_count());
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    out[e] = (vertex[std::size_t(t[0])] + vertex[std::size_t(t[1])] + vertex[std::size_t(t[2])]) / 3.0;
+  }
+  return out;
+}
+
 // E + lamp: what the system's right-hand side is.
 std::vector<rgb> right_hand_side(const hierarchical_solver& solver) {
   std::vector<rgb> b(solver.emission.size());
@@ -483,7 +514,7 @@ void update_residual(hierarchical_solver& solver) {
 void update_direct(hierarchical_solver& solver) {
   apply_transport(solver, solver.emission, solver.direct);
   ++solver.progress.operator_applications;
-  for (std::size_t e = 0; e < solver.direct.size(); ++e) solver.direct[e] += solver.lamp[e];
+  for (std::size_t e = 0; e < solver.direct.size(); ++e) solver.direct[e] += direct_lamp(solver, e);
 }
 
 }  // namespace
@@ -604,6 +635,7 @@ void build_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
       const cluster_node& leaf = solver.tree.nodes[solver.tree.leaf_of_element[e]];
       solver.lamp[e] = solver.rho[e] * point_light_irradiance(s, solver.context, leaf.centroid, leaf.normal, rays);
     }
+    if (!solver.specular_lamp.empty()) solver.lamp[e] += solver.specular_lamp[e];
   }
   solver.progress.rays += rays;
   solver.emitted_power = 0.0;
@@ -631,6 +663,8 @@ std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, co
   solver->context = context;
   solver->context.vertex_areas.clear();  // the solver works per element
   solver->min_edge = params.min_edge > 0.0 ? params.min_edge : mesh.max_edge / 8.0;
+  solver->specular_lamp_input = specular_lamp_of(*solver, solver->progress.rays);
+  solver->specular_lamp = solver->specular_lamp_input;
   build_for_mesh(*solver, build_cluster_tree(mesh));
   solver->progress.closed = params.normalize_closed && scene_is_closed(*solver);
   restart_hierarchical(*solver);
@@ -641,6 +675,7 @@ void restart_hierarchical(hierarchical_solver& solver) {
   if (solver.mesh != solver.input_mesh) {
     solver.mesh = solver.input_mesh;
     solver.refined_mesh.reset();
+    solver.specular_lamp = solver.specular_lamp_input;
     build_for_mesh(solver, build_cluster_tree(*solver.mesh));
   }
   solver.links.clear();
@@ -648,7 +683,8 @@ void restart_hierarchical(hierarchical_solver& solver) {
   solver.split_marks.clear();
   solver.normalizer.assign(solver.mesh->element_count(), 1.0);
   solver.radiosity = right_hand_side(solver);
-  solver.direct = solver.lamp;
+  solver.direct.resize(solver.lamp.size());
+  for (std::size_t e = 0; e < solver.lamp.size(); ++e) solver.direct[e] = direct_lamp(solver, e);
   solver.residual.assign(solver.radiosity.size(), rgb(0.0));
   solver.residual_fraction = 1.0;
   const std::uint64_t rays = solver.progress.rays;
@@ -700,6 +736,11 @@ bool split_marked_elements(hierarchical_solver& solver) {
   const std::vector<rgb> radiosity = std::move(solver.radiosity), direct = std::move(solver.direct);
   solver.refined_mesh = refined;
   solver.mesh = refined.get();
+  if (!solver.specular_lamp.empty()) {
+    std::vector<rgb> pieces(refined->element_count());
+    for (std::size_t e = 0; e < pieces.size(); ++e) pieces[e] = solver.specular_lamp[std::size_t(from[e])];
+    solver.specular_lamp = std::move(pieces);
+  }
   build_for_mesh(solver, std::move(tree));
   solver.links = std::move(links);
   index_links(solver);

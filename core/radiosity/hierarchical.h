@@ -139,8 +139,14 @@ struct hierarchical_solver {
 
   // Per element
   std::vector<rgb> rho;
-  std::vector<rgb> emission;       // E
-  std::vector<rgb> lamp;           // radiosity reflected from point lights (part of the right-hand side)
+  std::vector<rgb> emission;  // E
+  std::vector<rgb> lamp;      // radiosity reflected from point lights (part of the right-hand side)
+  // The part of lamp that arrives from the emitters and point lights by
+  // way of mirrors and glass (specular_light_from_sources: found once on
+  // the input mesh, each piece of a split element keeping its element's);
+  // not direct light. Empty when the specular transfer is off.
+  std::vector<rgb> specular_lamp;
+  std::vector<rgb> specular_lamp_input;
   std::vector<double> normalizer;  // 1 / form-factor sum in closed scenes, else 1
   std::vector<rgb> radiosity;      // B (the solution)
   std::vector<rgb> direct;         // the part of B received straight from emitters and point lights

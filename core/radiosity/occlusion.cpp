@@ -59,6 +59,32 @@ bool occlusion_scene::occluded(const vec3& from, const vec3& to) const {
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+occlusion_scene::crossing occlusion_scene::first_crossing(const vec3& from, const vec3& to) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit query{};
+  const vec3 d = to - from;
+  query.ray.org_x = static_cast<float>(from.x);
+  query.ray.org_y = static_cast<float>(from.y);
+  query.ray.org_z = static_cast<float>(from.z);
+  query.ray.dir_x = static_cast<float>(d.x);
+  query.ray.dir_y = static_cast<float>(d.y);
+  query.ray.dir_z = static_cast<float>(d.z);
+  query.ray.tnear = 0.0f;
+  query.ray.tfar = 1.0f;
+  query.ray.mask = 0xFFFFFFFFu;
+  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(state_->scene, &context, &query);
+  crossing out;
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
+  out.triangle = static_cast<int>(query.hit.primID);
+  out.t = query.ray.tfar;
+  out.u = query.hit.u;
+  out.v = query.hit.v;
+  return out;
+}
+
 void occlusion_scene::record_segments(std::size_t capacity) {
   state_->recorded.assign(capacity, segment{});
   state_->recorded_count = 0;

@@ -25,6 +25,17 @@ class occlusion_scene {
   // excluded: callers lift them off their surfaces first). Thread-safe.
   bool occluded(const vec3& from, const vec3& to) const;
 
+  // The first triangle the segment from `from` to `to` crosses: its index,
+  // where along the segment (0..1) and Embree's barycentrics (the point is
+  // (1 - u - v) p0 + u p1 + v p2). triangle < 0 when nothing is crossed.
+  // What the specular paths follow (specular_paths.h). Thread-safe.
+  struct crossing {
+    int triangle = -1;
+    double t = 0.0;
+    double u = 0.0, v = 0.0;
+  };
+  crossing first_crossing(const vec3& from, const vec3& to) const;
+
   // How many of the segments from `from` to each target are unblocked.
   // Cast in packets of 8 (Embree's rtcOccluded8). Thread-safe.
   int count_unblocked(const vec3& from, std::span<const vec3> targets) const;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "base/check.h"
+#include "radiosity/mirror_images.h"
 #include "radiosity/point_lights.h"
 
 namespace bounce {
@@ -22,6 +23,72 @@ rgb spread_to_elements(radiosity_state& state, const std::vector<rgb>& delta) {
     power += mean * mesh.element_areas[e];
   }
   return power;
+}
+
+// Power of a per-vertex radiosity change, spread to the elements as
+// spread_to_elements spreads it.
+rgb element_power(const patch_mesh& mesh, const std::vector<rgb>& delta) {
+  rgb power(0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    power += (delta[t[0]] + delta[t[1]] + delta[t[2]]) / 3.0 * mesh.element_areas[e];
+  }
+  return power;
+}
+
+bool specular_on(const radiosity_state& state) {
+  return state.form_factors.mirrors || state.specular;
+}
+
+// A different, reproducible stream of specular paths for every shot.
+std::uint64_t shot_seed(const radiosity_state& state) {
+  return state.params.form_factors.seed * 0x9E3779B97F4A7C15ull + state.stats.shots + 1;
+}
+
+// The mirrors and the specular elements of the state's mesh, when the
+// scene has specular materials and the transfer is on.
+void find_specular(radiosity_state& state, const scene& s) {
+  const form_factor_params& p = state.params.form_factors;
+  state.form_factors.mirrors = nullptr;
+  state.specular = nullptr;
+  if (!p.specular_transfer || !has_specular_materials(s)) return;
+  if (p.mirror_depth > 0) state.form_factors.mirrors = find_planar_mirrors(s, *state.mesh);
+  // The hierarchical solver finds its own specular elements (hierarchical.cpp).
+  if (p.specular_paths > 0 && state.params.method == solver_method::progressive)
+    state.specular = find_specular_surfaces(s, *state.mesh, state.form_factors.mirrors.get());
+}
+
+// Irradiance from the specular paths of one source, added as reflected
+// radiosity to `extra` and to state.traced.
+void trace_source(radiosity_state& state, const specular_source& source, std::vector<rgb>& extra) {
+  const patch_mesh& mesh = *state.mesh;
+  std::vector<rgb>& irradiance = state.traced_irradiance;
+  std::fill(irradiance.begin(), irradiance.end(), rgb(0.0));
+  state.stats.rays += trace_specular_paths(*state.source, state.form_factors, *state.specular, source, shot_seed(state),
+                                           irradiance, state.specular_paths);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const rgb b = mesh.vertex_rho[v] * irradiance[v];
+    extra[v] += b;
+    state.traced[v] += b;
+  }
+}
+
+// What the point lights give by way of mirrors and glass, per vertex.
+std::vector<rgb> specular_light_of_lights(radiosity_state& state) {
+  const patch_mesh& mesh = *state.mesh;
+  std::vector<rgb> extra(mesh.vertex_count(), rgb(0.0));
+  if (!specular_on(state) || state.source->lights.empty()) return extra;
+  if (state.form_factors.mirrors)
+    extra = mirrored_point_light_radiosity(*state.source, mesh, state.form_factors,
+                                           state.params.form_factors.mirror_depth, state.stats.rays);
+  if (state.specular)
+    for (const point_light& light : state.source->lights) {
+      specular_source source;
+      source.position = light.position;
+      source.intensity = light.intensity;
+      trace_source(state, source, extra);
+    }
+  return extra;
 }
 
 void update_fraction(radiosity_state& state) {
@@ -43,6 +110,14 @@ void shoot_point_lights(radiosity_state& state) {
     state.radiosity[v] += delta[v];
     state.direct[v] += delta[v];
   }
+  // By way of mirrors and glass: not direct (the tracer's shadow rays do
+  // not find it).
+  const std::vector<rgb> extra = specular_light_of_lights(state);
+  for (std::size_t v = 0; v < delta.size(); ++v) {
+    state.radiosity[v] += extra[v];
+    delta[v] += extra[v];
+  }
+  state.balance.specular += element_power(*state.mesh, extra);
   // Light from point lights enters the mesh here: it counts as emitted.
   state.balance.emitted += spread_to_elements(state, delta);
   state.stats.rays += rays;
@@ -65,10 +140,18 @@ void shoot_patch(radiosity_state& state, std::size_t patch) {
   state.balance.shot += power;
   const rgb shot = power / mesh.patch_areas[patch];
   const rgb shot_emission = emission_power / mesh.patch_areas[patch];
+  const shooter from = patch_shooter(mesh, int(patch));
+  // Its images in the planar mirrors: the same every time it shoots (and
+  // after refinement: the mirrors are geometry), so their records follow
+  // the patch's own in the log.
+  const std::vector<shooter> images = state.form_factors.mirrors ? mirror_images(*state.form_factors.mirrors, from,
+                                                                                 state.params.form_factors.mirror_depth)
+                                                                 : std::vector<shooter>{};
   int& record = state.patch_log[patch];
   if (record < 0) {
     record = int(state.shot_log.size());
-    state.shot_log.push_back({patch_shooter(mesh, int(patch))});
+    state.shot_log.push_back({from});
+    for (const shooter& image : images) state.shot_log.push_back({image});
   }
   state.shot_log[record].radiosity += shot;
   state.shot_log[record].emission += shot_emission;
@@ -78,6 +161,28 @@ void shoot_patch(radiosity_state& state, std::size_t patch) {
     delta[v] = mesh.vertex_rho[v] * (f * shot);
     state.radiosity[v] += delta[v];
     state.direct[v] += mesh.vertex_rho[v] * (f * shot_emission);
+  }
+  if (specular_on(state)) {
+    // By way of mirrors and glass: received like the rest, never direct.
+    std::vector<rgb>& extra = state.specular_received;
+    std::fill(extra.begin(), extra.end(), rgb(0.0));
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      const rgb seen = images[i].through.kr * shot;
+      state.stats.rays += form_factors_by_rays(state.form_factors, images[i], {}, state.scratch);
+      state.shot_log[std::size_t(record) + 1 + i].radiosity += seen;
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) extra[v] += mesh.vertex_rho[v] * (state.scratch[v] * seen);
+    }
+    if (state.specular) {
+      specular_source source;
+      source.from = &from;
+      source.radiosity = shot;
+      trace_source(state, source, extra);
+    }
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      delta[v] += extra[v];
+      state.radiosity[v] += extra[v];
+    }
+    state.balance.specular += element_power(mesh, extra);
   }
   state.balance.received += spread_to_elements(state, delta);
 }
@@ -108,6 +213,7 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     state->patch_elements[mesh.element_patches[e]].push_back(int(e));
   state->patch_log.assign(mesh.patch_count(), -1);
+  find_specular(*state, s);  // the hierarchical solver takes the mirrors from the context
   if (params.method == solver_method::hierarchical)
     state->hierarchy = make_hierarchical_solver(s, mesh, state->form_factors, params.hierarchical);
   restart_radiosity(*state);
@@ -138,7 +244,7 @@ void publish_hierarchical(radiosity_state& state) {
     std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
     for (std::size_t e = 0; e < b.size(); ++e) {
       b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
-      d[e] = h.lamp[e] + h.gathered_direct[e];
+      d[e] = h.lamp[e] - (h.specular_lamp.empty() ? rgb(0.0) : h.specular_lamp[e]) + h.gathered_direct[e];
     }
     state.radiosity = element_to_vertex(mesh, b);
     state.direct = element_to_vertex(mesh, d);
@@ -175,6 +281,10 @@ void restart_radiosity(radiosity_state& state) {
   }
   state.radiosity = mesh.vertex_emission;
   state.direct.assign(mesh.vertex_count(), rgb(0.0));
+  state.traced.assign(mesh.vertex_count(), rgb(0.0));
+  state.specular_received.assign(mesh.vertex_count(), rgb(0.0));
+  state.traced_irradiance.assign(mesh.vertex_count(), rgb(0.0));
+  state.specular_paths = {};
   state.unshot.assign(mesh.element_count(), rgb(0.0));
   state.balance = {};
   state.stats = {};
@@ -253,6 +363,17 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
   if (new_vertices) *new_vertices = mesh.vertex_count() - old_vertices;
 
   form_factor_context context = make_form_factor_context(mesh, state.params.form_factors);
+  // The same mirrors (geometry, in the same order: the shot log's images
+  // name them), their elements renumbered; the specular elements anew.
+  std::shared_ptr<const specular_surfaces> specular;
+  if (state.form_factors.mirrors) {
+    auto mirrors = std::make_shared<mirror_set>(*state.form_factors.mirrors);
+    mirrors->element_mirror.resize(mesh.element_count());
+    for (std::size_t e = 0; e < mesh.element_count(); ++e)
+      mirrors->element_mirror[e] = state.form_factors.mirrors->element_mirror[std::size_t(origin[e])];
+    context.mirrors = std::move(mirrors);
+  }
+  if (state.specular) specular = find_specular_surfaces(*state.source, mesh, context.mirrors.get());
   // New vertices gather what every shooter has shot so far: the very sum
   // that the shots would have added had the vertex been there all along.
   std::vector<int> added;
@@ -269,16 +390,35 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
       gathered_direct[i] += f[i] * record.emission;
     }
   }
-  std::vector<rgb> lights;
+  std::vector<rgb> lights, mirrored;
   if (has_lights_beyond_surfaces(*state.source) && state.lights_shot) {
     std::uint64_t rays = 0;
     lights = point_light_radiosity(*state.source, mesh, context, rays, old_vertices);
+    if (context.mirrors)
+      mirrored = mirrored_point_light_radiosity(*state.source, mesh, context, state.params.form_factors.mirror_depth,
+                                                rays, old_vertices);
     state.stats.rays += rays;
   }
+  // What the specular paths brought cannot be gathered again: new vertices
+  // take it interpolated over the element they were made in.
+  std::vector<rgb> traced = std::move(state.traced);
+  traced.resize(mesh.vertex_count(), rgb(0.0));
+  std::vector<std::uint8_t> done(mesh.vertex_count(), 0);
+  for (std::size_t e = 0; e < mesh.element_count() && state.specular; ++e)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t v = std::size_t(mesh.elements[e][k]);
+      if (v < old_vertices || done[v]) continue;
+      done[v] = 1;
+      const int o = origin[e];
+      const vec3 b = barycentric(old, o, mesh.positions[v]);
+      const glm::ivec3 t = old.elements[std::size_t(o)];
+      traced[v] = b[0] * traced[t[0]] + b[1] * traced[t[1]] + b[2] * traced[t[2]];
+    }
   for (std::size_t i = 0; i < added.size(); ++i) {
     const int v = added[i];
     const rgb light = lights.empty() ? rgb(0.0) : lights[v];
-    radiosity[v] = mesh.vertex_emission[v] + mesh.vertex_rho[v] * gathered[i] + light;
+    const rgb specular_light = (mirrored.empty() ? rgb(0.0) : mirrored[v]) + traced[v];
+    radiosity[v] = mesh.vertex_emission[v] + mesh.vertex_rho[v] * gathered[i] + light + specular_light;
     direct[v] = mesh.vertex_rho[v] * gathered_direct[i] + light;
   }
 
@@ -305,6 +445,10 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
   state.form_factors = std::move(context);
   state.radiosity = std::move(radiosity);
   state.direct = std::move(direct);
+  state.traced = std::move(traced);
+  state.specular = std::move(specular);
+  state.specular_received.assign(mesh.vertex_count(), rgb(0.0));
+  state.traced_irradiance.assign(mesh.vertex_count(), rgb(0.0));
   state.unshot = std::move(unshot);
   state.unshot_emission = std::move(unshot_emission);
   state.patch_log = std::move(patch_log);

@@ -27,6 +27,7 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/hierarchical.h"
 #include "radiosity/solver_settings.h"
+#include "radiosity/specular_paths.h"
 
 namespace bounce {
 
@@ -48,6 +49,10 @@ struct power_balance {
   // already made, less what the coarse elements had assumed there (signed;
   // a shadow found inside an element makes it negative).
   rgb refined{0.0};
+  // The part of received (and, for point lights, of emitted) that came by
+  // way of mirrors and glass: mirror images and specular paths. Already in
+  // the sums above: the balance does not add it again.
+  rgb specular{0.0};
 };
 
 // |emitted + received + refined - shot - unshot| / (emitted + received),
@@ -98,6 +103,16 @@ struct radiosity_state {
   std::vector<shot_record> shot_log;  // every shooter that has shot (a patch split later keeps its record)
   std::vector<int> patch_log;         // per patch: its entry in shot_log, -1 before its first shot
   adaptive_progress adaptive;
+  // Light through mirrors and glass (form_factor_params::specular_transfer;
+  // the planar mirrors are form_factors.mirrors). The elements specular
+  // paths are sent toward (null: none), what the paths have added to B per
+  // vertex (carried to new vertices by interpolation when the mesh is
+  // refined: the paths cannot be replayed), and where their power went.
+  std::shared_ptr<const specular_surfaces> specular;
+  std::vector<rgb> traced;
+  std::vector<rgb> specular_received;  // per vertex, the current shot's light through mirrors and glass
+  std::vector<rgb> traced_irradiance;  // per vertex, the current shot's specular paths
+  specular_tally specular_paths;
   // The hierarchical solver (params.method == hierarchical); the vertex
   // arrays above are then published from its element solution after
   // every step, and `unshot` holds each element's residual.

@@ -12,6 +12,7 @@
 #include "base/parallel.h"
 #include "scene/texture.h"
 #include "trace/optics.h"
+#include "trace/specular_event.h"
 
 namespace bounce {
 namespace {
@@ -92,22 +93,11 @@ photon_hit describe(const scene& s, const ray_hit& hit, const vec3& d) {
     out.rho = m.rho;
     if (m.texture >= 0) out.rho *= texture_value(s.textures[std::size_t(m.texture)], hit.uv);
   }
-  out.kr = m.kr;
-  out.kt = m.kt;
-  if (positive(out.kt)) {
-    // Outside is air; the front side is where the normal points.
-    const double n1 = front ? 1.0 : m.ior, n2 = front ? m.ior : 1.0;
-    out.refracted = refract(d, out.n, n1, n2);
-    if (m.fresnel) {
-      const double f = fresnel_dielectric(std::min(1.0, -glm::dot(d, out.n)), n1, n2);
-      out.kr += f * out.kt;
-      out.kt *= 1.0 - f;
-    }
-    if (!out.refracted) {  // total internal reflection: all of it reflects
-      out.kr += out.kt;
-      out.kt = rgb(0.0);
-    }
-  }
+  // Outside is air; the front side is where the normal points.
+  const specular_event event = specular_split(m, d, out.n, front);
+  out.kr = event.kr;
+  out.kt = event.kt;
+  out.refracted = event.refracted;
   return out;
 }
 

@@ -1,0 +1,89 @@
+// Light through curved mirrors and glass, by tracing (the part of the
+// specular transfer that mirror images cannot do: mirror_images.h).
+//
+// A source (a shooting triangle, or a point light) sends paths toward the
+// specular elements that are not planar mirrors: element j is chosen in
+// proportion to an estimate of the power it receives from the source (its
+// area times the form factor from its centre, with a floor so that every
+// element the source can reach keeps a chance), a point y uniformly on
+// it, a point x uniformly on the source, and the path carries
+//   B cos_x cos_y / (pi r^2) A_source A_j / (p_j N)   (triangle, radiosity B)
+//   I cos_y / r^2 A_j / (p_j N)                       (point light, intensity I)
+// when the segment x -> y first meets element j: an unbiased estimate of
+// the power the specular elements receive. From there it is followed
+// through reflection and refraction (specular_event.h: Fresnel where the
+// material asks for it, total internal reflection) by Russian roulette on
+// the mean of the weights, as the caustic photons are. Where it meets the
+// front of a surface with diffuse reflectance it deposits its power there,
+// on the vertices of the element met in proportion to the barycentric
+// coordinates, as irradiance (power over the vertex's share of area), and
+// goes on with that surface's specular part if any. Paths that reach a
+// diffuse surface directly, or by planar mirrors, are not traced: form
+// factors and mirror images carry them.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mesh/patch_mesh.h"
+#include "radiosity/form_factor.h"
+
+namespace bounce {
+
+struct mirror_set;
+
+// The elements paths are sent toward: specular (kr or kt > 0) and not part
+// of a planar mirror. Null when there are none.
+struct specular_surfaces {
+  std::vector<int> elements;
+};
+std::shared_ptr<const specular_surfaces> find_specular_surfaces(const scene& s, const patch_mesh& mesh,
+                                                                const mirror_set* mirrors);
+
+// Whether any material of the scene is specular (kr or kt > 0).
+bool has_specular_materials(const scene& s);
+
+// Where the power sent into specular paths went, per channel. Every path
+// ends once: sent + reweighted = stopped + escaped + truncated, where a
+// path's deposits on diffuse surfaces (deposited) do not end it.
+struct specular_tally {
+  rgb sent{0.0};        // arriving at the specular elements from the sources
+  rgb deposited{0.0};   // arriving at diffuse surfaces after one or more specular events
+  rgb stopped{0.0};     // not reflected or transmitted specularly any further (roulette)
+  rgb escaped{0.0};     // left the scene
+  rgb truncated{0.0};   // still going after the maximum of specular events
+  rgb reweighted{0.0};  // gained or lost by roulette on coloured weights (zero for grey ones)
+  std::uint64_t paths = 0;
+};
+void add(specular_tally& to, const specular_tally& from);
+
+// A source of specular paths: a shooter with its radiosity, or a point
+// light (from == nullptr) with its intensity.
+struct specular_source {
+  const shooter* from = nullptr;
+  rgb radiosity{0.0};
+  vec3 position{0.0};
+  rgb intensity{0.0};
+};
+
+// Traces `context.params.specular_paths` paths from the source and adds
+// the irradiance they deposit to `irradiance` (per vertex of the
+// context's mesh). `seed` makes the paths (different shots: different
+// seeds); the result does not depend on the threads. Returns the rays cast.
+std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& context,
+                                   const specular_surfaces& surfaces, const specular_source& source, std::uint64_t seed,
+                                   std::vector<rgb>& irradiance, specular_tally& tally);
+
+// The light that reaches each vertex from the emitting patches and the
+// point lights by way of mirrors and glass alone (one specular chain, then
+// the vertex): mirror images of the emitting patches and of the point
+// lights, and the specular paths of both, as reflected radiosity per
+// vertex. What the hierarchical solver adds to its right-hand side (its
+// links carry no light through mirrors). `surfaces` may be null (no
+// paths); the context's mirrors may be null (no images). Adds the rays
+// cast to `rays`.
+std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
+                                             const specular_surfaces* surfaces, std::uint64_t& rays);
+
+}  // namespace bounce
