@@ -87,7 +87,10 @@ bool mesh_renderer::init(std::string& error) {
 mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source) {
   mesh_arrays out;
   const std::size_t solution_count = mesh.vertex_count();
-  const curved_display curved = make_curved_display(mesh, source.get());
+  // Curved surfaces drawn finer, within twice the mesh's triangles (at
+  // least 30,000): llvmpipe's frame time follows the triangle count.
+  const curved_display curved =
+      make_curved_display(mesh, source.get(), 6.0, std::max<std::size_t>(2 * mesh.element_count(), 30000));
   const std::size_t vertex_count = solution_count + curved.positions.size();
   out.vertex_count = vertex_count;
   out.solution_vertex_count = solution_count;
