@@ -46,7 +46,12 @@ struct curved_display {
 // triangles: past it, k shrinks everywhere.
 //
 // `source`, when given, puts the points of its spheres on the true sphere.
-curved_display make_curved_display(const patch_mesh& mesh, const scene* source = nullptr, double degrees_per_step = 6.0,
+// A step per 12 degrees of normal turn: a silhouette strays by
+// r (1 - cos 6 deg), half a pixel on a sphere 200 pixels across.
+constexpr double display_degrees_per_step = 12.0;
+
+curved_display make_curved_display(const patch_mesh& mesh, const scene* source = nullptr,
+                                   double degrees_per_step = display_degrees_per_step,
                                    std::size_t triangle_budget = 2'000'000);
 
 }  // namespace bounce::gl

@@ -89,8 +89,8 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
   const std::size_t solution_count = mesh.vertex_count();
   // Curved surfaces drawn finer, within twice the mesh's triangles (at
   // least 30,000): llvmpipe's frame time follows the triangle count.
-  const curved_display curved =
-      make_curved_display(mesh, source.get(), 6.0, std::max<std::size_t>(2 * mesh.element_count(), 30000));
+  const curved_display curved = make_curved_display(mesh, source.get(), display_degrees_per_step,
+                                                    std::max<std::size_t>(2 * mesh.element_count(), 30000));
   const std::size_t vertex_count = solution_count + curved.positions.size();
   out.vertex_count = vertex_count;
   out.solution_vertex_count = solution_count;
@@ -405,9 +405,10 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
     glUniform1f(glGetUniformLocation(program, "largest_element"), std::max(largest_element_, 1e-30f));
     glUniform1i(glGetUniformLocation(program, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
   };
-  use(program_);
-  glDrawElements(GL_TRIANGLES, GLsizei(plain_count_), GL_UNSIGNED_INT, nullptr);
-  for (const bool specular : {false, true}) {
+  // Mirrors and glass first: they stand in front of walls more often than
+  // behind them, and what they hide then fails the depth test before its
+  // fragment shader runs (llvmpipe shades on the CPU; every pixel counts).
+  for (const bool specular : {true, false}) {
     const unsigned int p = specular ? specular_program_ : textured_program_;
     bool used = false;
     for (const material_run& run : runs_) {
@@ -471,6 +472,8 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
   glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, 0);
+  use(program_);
+  glDrawElements(GL_TRIANGLES, GLsizei(plain_count_), GL_UNSIGNED_INT, nullptr);
   // The background where no sample holds a surface: a full-screen triangle
   // at the far plane through the same shader, so it gets the surfaces'
   // exposure and tone curve (and in linear output, its radiance unscaled).

@@ -43,7 +43,7 @@ TEST(CurvedDisplay, SpherePointsLieOnTheSphereWithoutCracks) {
     elements.insert(elements.end(), {unsigned(e[0]), unsigned(e[1]), unsigned(e[2])});
   expect_closed(elements, "the solver's mesh");
 
-  const gl::curved_display display = gl::make_curved_display(mesh, &s);
+  const gl::curved_display display = gl::make_curved_display(mesh, &s, 6.0);
   ASSERT_FALSE(display.positions.empty());  // the sphere is split
   expect_closed(display.triangles, "the display");
   EXPECT_GE(display.triangles.size() / 3, 16 * mesh.element_count());  // k >= 4 at this size
