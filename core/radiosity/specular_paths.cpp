@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "base/parallel.h"
+#include "base/random_stream.h"
 #include "radiosity/mirror_images.h"
 #include "radiosity/occlusion.h"
 #include "trace/specular_event.h"
@@ -21,22 +22,6 @@ bool positive(const rgb& c) {
 double mean_channel(const rgb& c) {
   return (c.r + c.g + c.b) / 3.0;
 }
-
-// splitmix64 stream, seeded per (shot, path): a path depends on them alone.
-struct random_stream {
-  std::uint64_t state;
-  random_stream(std::uint64_t seed, std::uint64_t index)
-      : state(seed * 0x9E3779B97F4A7C15ull ^ (index + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull) {
-    next_bits();
-  }
-  std::uint64_t next_bits() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next_bits() >> 11) * 0x1p-53; }
-};
 
 // Barycentric coordinates of a uniform point on a triangle (sqrt warp).
 vec3 uniform_barycentric(double u1, double u2) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/parallel.h"
+#include "base/random_stream.h"
 #include "scene/texture.h"
 #include "trace/optics.h"
 #include "trace/specular_event.h"
@@ -18,25 +19,6 @@ namespace bounce {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-// splitmix64, seeded per photon as ray_tracer.cpp seeds it per pixel: a
-// photon's path depends on the seed and its index alone, not on how the
-// threads share the blocks.
-struct random_stream {
-  std::uint64_t state;
-  random_stream(std::uint64_t seed, std::uint64_t index)
-      : state(seed * 0x9E3779B97F4A7C15ull ^ (index + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull ^
-              0x94D049BB133111EBull) {
-    next_bits();
-  }
-  std::uint64_t next_bits() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next_bits() >> 11) * 0x1p-53; }  // [0, 1)
-};
 
 double mean_channel(const rgb& c) {
   return (c.r + c.g + c.b) / 3.0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/parallel.h"
+#include "base/random_stream.h"
 #include "image/image_metrics.h"
 #include "image/tonemap.h"
 #include "scene/camera_math.h"
@@ -19,29 +20,12 @@
 #include "trace/irradiance_cache.h"
 #include "trace/optics.h"
 #include "trace/progressive_photons.h"
+#include "trace/specular_event.h"
 
 namespace bounce {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-// splitmix64: small, fast, and seedable per pixel, so a picture depends on
-// the seed alone and not on how threads share the tiles.
-struct random_stream {
-  std::uint64_t state;
-  explicit random_stream(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0)
-      : state(seed * 0x9E3779B97F4A7C15ull ^ (a + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull ^
-              (b + 1) * 0x94D049BB133111EBull) {
-    next_bits();
-  }
-  std::uint64_t next_bits() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next_bits() >> 11) * 0x1p-53; }  // [0, 1)
-};
 
 // n stratified points in [0,1)^2 (Latin hypercube: each row and each
 // column of an n x n grid holds one point), for any n.
@@ -205,22 +189,11 @@ class tracer {
         for (int c = 0; c < 3; ++c) sp.texture_detail[c] = mean[c] > 0.0 ? value[c] / mean[c] : 0.0;
       }
     }
-    sp.kr = sp.mat->kr;
-    sp.kt = sp.mat->kt;
-    if (glm::any(glm::greaterThan(sp.kt, rgb(0.0)))) {
-      // Outside is air; the front side is where the normal points.
-      const double n1 = sp.front ? 1.0 : sp.mat->ior, n2 = sp.front ? sp.mat->ior : 1.0;
-      sp.refracted = refract(d, sp.n, n1, n2);
-      if (sp.mat->fresnel) {
-        const double f = fresnel_dielectric(std::min(1.0, -glm::dot(d, sp.n)), n1, n2);
-        sp.kr += f * sp.kt;
-        sp.kt *= 1.0 - f;
-      }
-      if (!sp.refracted) {  // total internal reflection: all of it reflects
-        sp.kr += sp.kt;
-        sp.kt = rgb(0.0);
-      }
-    }
+    // Outside is air; the front side is where the normal points.
+    const specular_event split = specular_split(*sp.mat, d, sp.n, sp.front);
+    sp.kr = split.kr;
+    sp.kt = split.kt;
+    sp.refracted = split.refracted;
     return sp;
   }
 

@@ -1,8 +1,9 @@
 // What a specular surface does to light arriving on it: the split between
 // mirror reflection and refraction, with Fresnel's equations where the
 // material asks for them and total internal reflection. Shared by every
-// pass that follows light through mirrors and glass (the caustic photons,
-// the radiosity solver's specular paths) so that they agree.
+// pass that follows light through mirrors and glass (the ray tracer, the
+// caustic photons, the radiosity solver's specular paths) so that they
+// agree.
 #pragma once
 
 #include <algorithm>
