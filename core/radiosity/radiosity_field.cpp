@@ -88,11 +88,13 @@ bool closest_element(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
-radiosity_field::radiosity_field(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct)
+radiosity_field::radiosity_field(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct,
+                                 const rgb& ambient)
     : mesh_(mesh), state_(std::make_unique<embree_state>()) {
   vertex_values_.resize(mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const rgb reflected = radiosity[v] - mesh.vertex_emission[v];
+    const rgb unshot = mesh.vertex_rho[v] * ambient;  // indirect light by definition
+    const rgb reflected = radiosity[v] - mesh.vertex_emission[v] + unshot;
     vertex_values_[v] = {reflected, direct.empty() ? reflected : reflected - direct[v]};
   }
 

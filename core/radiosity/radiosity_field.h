@@ -21,9 +21,12 @@ struct diffuse_radiosity {
 class radiosity_field {
  public:
   // `radiosity` and `direct` per vertex of `mesh` (as radiosity_state keeps
-  // them; `direct` may be empty: then indirect = reflected). The mesh must
-  // outlive the field.
-  radiosity_field(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct);
+  // them; `direct` may be empty: then indirect = reflected). `ambient`
+  // (ambient_radiosity of the state) stands in for the light still unshot:
+  // each vertex reflects rho times it, as the live view shows it. The mesh
+  // must outlive the field.
+  radiosity_field(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct,
+                  const rgb& ambient = rgb(0.0));
   ~radiosity_field();
   radiosity_field(const radiosity_field&) = delete;
   radiosity_field& operator=(const radiosity_field&) = delete;

@@ -297,6 +297,33 @@ TEST(TwoPass, FurnaceStillIsTheExactRadianceEverywhere) {
   }
 }
 
+TEST(TwoPass, AmbientStandsInForTheLightStillUnshot) {
+  // The furnace stopped with a third of its power unshot: the solution is
+  // dark, and Cohen's ambient term (the unshot power spread evenly and
+  // interreflected) is exact for a furnace, so the still that adds it shows
+  // Ke / (1 - rho) = 2 again.
+  scene s = load("assets/furnace/furnace.json");
+  s.view.width = s.view.height = 24;
+  patch_mesh mesh;
+  std::string error;
+  mesher_params mp;
+  mp.max_edge = 0.5;
+  ASSERT_TRUE(make_patch_mesh(s, mp, mesh, error)) << error;
+  auto state = make_radiosity_state(s, mesh, radiosity_params{});
+  run_radiosity(*state, stop_criterion{0.35, 0, 0}, [](const radiosity_state&) {});
+  ASSERT_GT(state->stats.unshot_fraction, 0.1);
+  const ray_scene rays(s);
+  trace_params p;
+  p.diffuse = diffuse_source::radiosity;
+  const radiosity_field bare(mesh, state->radiosity, state->direct);
+  const radiosity_field with_ambient(mesh, state->radiosity, state->direct, ambient_radiosity(*state));
+  const double dark = mean_radiance(trace_image(s, s.view, rays, &bare, p));
+  const double lit = mean_radiance(trace_image(s, s.view, rays, &with_ambient, p));
+  // Measured: 1.648 without the ambient term, 1.998 with it.
+  EXPECT_LT(dark, 1.9);
+  EXPECT_NEAR(lit, 2.0, 0.02) << "without the ambient term " << dark;
+}
+
 TEST(TwoPass, FieldInterpolatesVertexValuesOnExactSpheres) {
   // A sphere inside: the field found from exact hits between the
   // tessellation's vertices matches the vertex values it interpolates.
