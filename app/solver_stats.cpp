@@ -5,6 +5,9 @@
 
 #include <tbb/global_control.h>
 
+#include "console.h"
+#include "radiosity/specular_paths.h"
+
 namespace bounce {
 namespace {
 
@@ -83,6 +86,12 @@ void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
   if (mesh.uncut_overlaps)
     std::fprintf(stderr, "warning: %s: %zu coplanar overlap(s) could not be cut out of the surface behind\n",
                  s.source.c_str(), mesh.uncut_overlaps);
+}
+
+void note_solver_limits(const scene& s, const solver_settings& settings) {
+  if (settings.method == solver_method::hierarchical && has_specular_materials(s))
+    say("note: the hierarchical solver carries the lights' power through mirrors and glass, but not light passed "
+        "from one diffuse surface to another by way of them; --solver progressive carries both\n");
 }
 
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {

@@ -671,6 +671,25 @@ TEST(Cli, QuietLeavesOnlyWarningsAndErrors) {
   EXPECT_NE(r.err.find("unknown picture format"), std::string::npos) << r.err;
 }
 
+// A scene with mirrors solved hierarchically is told what that solver
+// leaves out (diffuse light passed on by the mirrors), and how to get it;
+// the progressive solver, which carries it, says nothing of the kind.
+TEST(Cli, HierarchicalSolverSaysWhatItLeavesOutOfMirrors) {
+  const std::string scene = source_path("assets/cornell_caustics/cornell_caustics.json");
+  const std::string fast = " --max-edge 150 --until 0.05 --link-tolerance 1e-3";
+  run_result r = run("solve " + scene + fast);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("note: the hierarchical solver"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--solver progressive"), std::string::npos) << r.out;
+  r = run("solve " + scene + " --solver progressive --max-edge 150 --until 0.05");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("note: the hierarchical solver"), std::string::npos) << r.out;
+  // A scene without mirrors or glass: nothing to say.
+  r = run("solve" + fast);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("note: the hierarchical solver"), std::string::npos) << r.out;
+}
+
 // Progress bars redraw one line on a terminal and stay out of pipes and logs.
 TEST(Cli, ProgressBarsOnATerminalOnly) {
   scratch_dir dir;
