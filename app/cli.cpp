@@ -401,6 +401,11 @@ int run_cli(int argc, char** argv) {
   render->add_option("--colours", render_extra.colours, "radiance, or false colour of unshot power or element size")
       ->check(CLI::IsMember({"radiance", "unshot", "size"}))
       ->capture_default_str();
+  render
+      ->add_option("--msaa", render_extra.msaa,
+                   "antialiasing samples per pixel; 0 draws as the window does on software GL")
+      ->check(CLI::IsMember({0, 1, 2, 4, 8}))
+      ->capture_default_str();
   viewer_options view_extra;
   CLI::App* view = commands[0].app;
   CLI::Option* view_frames = view->add_option("--frames", view_extra.frames, "scripted run: draw this many frames")

@@ -20,6 +20,7 @@ struct render_options {
   bool panel = false;                // draw the ImGui panel over the view, as the window shows it
   std::string colours = "radiance";  // radiance | unshot | size (false colour)
   std::string stats_path;            // --stats: solver statistics as JSON
+  int msaa = 4;                      // samples per pixel; 0 or 1: none
 };
 
 int run_render(const scene& s, const solver_settings& solver, const render_options& options);

@@ -1,20 +1,26 @@
 #version 330 core
-// Centroid, perspective-corrected by hand: see gouraud.vert. Compiled four
-// times (mesh_renderer.cpp): as it stands for plain materials, with
+// Centroid, perspective-corrected by hand: see gouraud.vert. Compiled in
+// variants (mesh_renderer.cpp): as it stands for plain materials, with
 // TEXTURED for textured ones (so that plain pixels pay nothing for
-// textures), with TEXTURED and SPECULAR for mirrors and glass, and with
-// BACKGROUND for what rays that miss the scene see.
+// textures), with TEXTURED and SPECULAR for mirrors, with GLASS as well
+// for glass (so that mirrors skip refraction), and with BACKGROUND for what
+// rays that miss the scene see; each but the last with and without
+// SINGLE_SAMPLE (see gouraud.vert).
+#ifndef SINGLE_SAMPLE
 noperspective centroid in vec4 radiance_w;
 noperspective centroid in vec4 unshot_w;
 noperspective centroid in vec3 normal_w;
 noperspective centroid in vec3 position_w;
+#endif
 flat in int has_back_side;           // see gouraud.vert
 smooth centroid in vec3 radiance_s;  // the fallback: see gouraud.vert
 smooth centroid in vec4 unshot_s;
 smooth centroid in vec3 normal_s;
 smooth centroid in vec3 position_s;
 #ifdef TEXTURED
+#ifndef SINGLE_SAMPLE
 noperspective centroid in vec2 uv_w;
+#endif
 smooth centroid in vec2 uv_s;
 #endif
 
@@ -127,6 +133,7 @@ vec3 environment_along(vec3 p, vec3 d) {
   return texture(environment, lookup).rgb;
 }
 
+#ifdef GLASS
 // core/trace/optics.cpp's fresnel_dielectric.
 float fresnel(float cos_incident, float n1, float n2) {
   float cos_i = clamp(abs(cos_incident), 0.0, 1.0);
@@ -143,8 +150,6 @@ float fresnel(float cos_incident, float n1, float n2) {
 // its bounding sphere, refracted out there (exact for a glass sphere but
 // for the light reflected inside, which is left out).
 vec3 transmitted(vec3 p, vec3 view, vec3 r, bool entering) {
-  if (probe_thin != 0) return environment_along(p, view);
-  if (!entering) return environment_along(p, r);
   vec3 oc = p - probe_centre;
   float b = dot(oc, r);
   float t = -b + sqrt(max(b * b - (dot(oc, oc) - probe_radius * probe_radius), 0.0));
@@ -152,8 +157,12 @@ vec3 transmitted(vec3 p, vec3 view, vec3 r, bool entering) {
   vec3 m = normalize(q - probe_centre);  // out of the solid
   vec3 out_dir = refract(r, -m, ior);
   if (dot(out_dir, out_dir) == 0.0) out_dir = reflect(r, -m);  // total internal reflection: once more inside, roughly
-  return environment_along(q, out_dir);
+  bool straight = probe_thin != 0 || !entering;
+  vec3 from = straight ? p : q;
+  vec3 along = probe_thin != 0 ? view : (entering ? out_dir : r);
+  return environment_along(from, along);
 }
+#endif
 
 // The Whitted tracer's specular terms (ray_tracer.cpp, describe and
 // whitted): kr times the reflection, kt times the refraction, Fresnel
@@ -163,19 +172,20 @@ vec3 specular_radiance(vec3 p, vec3 normal) {
   vec3 n = normalize(normal);
   bool front = dot(view, n) < 0.0;
   if (!front) n = -n;
-  float n1 = front ? 1.0 : ior, n2 = front ? ior : 1.0;
-  vec3 kr = mirror_weight, kt = transmit_weight;
+  vec3 kr = mirror_weight;
   vec3 radiance = vec3(0.0);
-  if (any(greaterThan(kt, vec3(0.0)))) {
-    vec3 r = refract(view, n, n1 / n2);
-    if (dot(r, r) == 0.0) {  // total internal reflection
-      kr += kt;
-    } else {
-      float f = fresnel_on != 0 ? fresnel(-dot(view, n), n1, n2) : 0.0;
-      kr += f * kt;
-      radiance += (1.0 - f) * kt * transmitted(p, view, r, front);
-    }
+#ifdef GLASS
+  float n1 = front ? 1.0 : ior, n2 = front ? ior : 1.0;
+  vec3 kt = transmit_weight;
+  vec3 r = refract(view, n, n1 / n2);
+  if (dot(r, r) == 0.0) {  // total internal reflection
+    kr += kt;
+  } else {
+    float f = fresnel_on != 0 ? fresnel(-dot(view, n), n1, n2) : 0.0;
+    kr += f * kt;
+    radiance += (1.0 - f) * kt * transmitted(p, view, r, front);
   }
+#endif
   radiance += kr * environment_along(p, reflect(view, n));
   if (shininess > 0.0) {
     for (int i = 0; i < light_count; ++i) {  // ray_tracer.cpp's phong(), front side only
@@ -214,6 +224,16 @@ void main() {
 #endif
   // A two-sided surface seen from behind: its back, drawn in the same place, shows that side.
   if (has_back_side != 0 && !gl_FrontFacing) discard;
+#ifdef SINGLE_SAMPLE
+  vec3 vertex_radiance = radiance_s;
+  vec3 vertex_unshot = unshot_s.xyz;
+  float vertex_element_size = unshot_s.w;
+  vec3 world_normal = normal_s;
+  vec3 world_position = position_s;
+#ifdef TEXTURED
+  vec2 uv = uv_s;
+#endif
+#else
   float w = 1.0 / radiance_w.w;
   vec3 vertex_radiance = radiance_w.xyz * w;
   vec3 vertex_unshot = unshot_w.xyz * w;
@@ -233,6 +253,9 @@ void main() {
 #ifdef TEXTURED
   vec2 uv = uv_w * w;
   if (!quotients || any(isnan(uv)) || any(isinf(uv))) uv = uv_s;
+#endif
+#endif
+#ifdef TEXTURED
   // Outside any divergent return, so that the derivatives are defined.
   if (texture_mode == 1) {
     vec3 detail = texture(image, vec2(uv.x, 1.0 - uv.y)).rgb * inverse_mean;

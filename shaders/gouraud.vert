@@ -21,10 +21,17 @@ uniform vec3 ambient;        // Cohen 1988 ambient radiosity, zero when switched
 // the screen, divided in gouraud.frag): Mesa's llvmpipe (22.3) takes w at
 // the pixel centre for centroid inputs, so a constant came out up to 0.4%
 // off; the quotient of two values interpolated at one point is exact.
+// SINGLE_SAMPLE (a framebuffer without multisampling: the window on
+// software GL, the mirrors' cube-map faces) leaves the quotients out: the
+// centroid is then the pixel centre, GL's own interpolation below is
+// exact, and half as many values to interpolate is a few milliseconds a
+// frame on llvmpipe (docs/viewer.md, "Frame times").
+#ifndef SINGLE_SAMPLE
 noperspective centroid out vec4 radiance_w;  // (B / pi in W / (m^2 sr), 1) / w
 noperspective centroid out vec4 unshot_w;    // (unshot / pi, element size) / w
 noperspective centroid out vec3 normal_w;
 noperspective centroid out vec3 position_w;
+#endif
 // The same values interpolated by GL itself (perspective-correct), for the
 // few fragments where the quotients above are not finite: Mesa's clipper
 // finds its blend factor for noperspective values from a difference of
@@ -38,7 +45,9 @@ smooth centroid out vec4 unshot_s;
 smooth centroid out vec3 normal_s;
 smooth centroid out vec3 position_s;
 #ifdef TEXTURED
+#ifndef SINGLE_SAMPLE
 noperspective centroid out vec2 uv_w;
+#endif
 smooth centroid out vec2 uv_s;
 #endif
 
@@ -52,18 +61,22 @@ void main() {
   return;
 #endif
   gl_Position = view_projection * vec4(position, 1.0);
+  has_back_side = element_size < 0.0 ? 1 : 0;
+#ifndef SINGLE_SAMPLE
   float inv_w = 1.0 / gl_Position.w;
   radiance_w = vec4((radiosity + reflectance * ambient) / pi, 1.0) * inv_w;
-  has_back_side = element_size < 0.0 ? 1 : 0;
   unshot_w = vec4(unshot / pi, abs(element_size)) * inv_w;
   normal_w = normal * inv_w;
   position_w = position * inv_w;
+#endif
   radiance_s = (radiosity + reflectance * ambient) / pi;
   unshot_s = vec4(unshot / pi, abs(element_size));
   normal_s = normal;
   position_s = position;
 #ifdef TEXTURED
+#ifndef SINGLE_SAMPLE
   uv_w = uv * inv_w;
+#endif
   uv_s = uv;
 #endif
 }

@@ -6,17 +6,18 @@
 
 namespace bounce::headless {
 
-// A multisampled colour + depth framebuffer and its single-sample resolve.
+// A multisampled colour + depth framebuffer and its single-sample resolve
+// (with 0 samples, a plain framebuffer and a copy).
 struct offscreen_view::target {
   GLuint msaa_fbo = 0, msaa_colour = 0, msaa_depth = 0, resolve_fbo = 0, resolve_colour = 0;
 
-  target(int width, int height, GLenum format) {
+  target(int width, int height, GLenum format, int samples) {
     glGenRenderbuffers(1, &msaa_colour);
     glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, format, width, height);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
     glGenRenderbuffers(1, &msaa_depth);
     glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT24, width, height);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width, height);
     glGenFramebuffers(1, &msaa_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour);
@@ -36,14 +37,15 @@ struct offscreen_view::target {
   }
 };
 
-offscreen_view::offscreen_view(int width, int height) : context_(width, height), width_(width), height_(height) {
+offscreen_view::offscreen_view(int width, int height, int samples)
+    : context_(width, height), width_(width), height_(height), samples_(samples > 1 ? samples : 0) {
   if (!context_.ok()) {
     error_ = context_.error();
     return;
   }
   renderer_ = std::make_unique<gl::mesh_renderer>();
   if (!renderer_->init(error_)) return;
-  bytes_ = std::make_unique<target>(width, height, GL_RGBA8);
+  bytes_ = std::make_unique<target>(width, height, GL_RGBA8, samples_);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error_ = "OSMesa: framebuffer incomplete";
 }
 
@@ -85,7 +87,7 @@ std::vector<unsigned char> offscreen_view::render_rgba8(const glm::mat4& view_pr
 
 image offscreen_view::render_linear(const glm::mat4& view_projection, const glm::vec3& eye,
                                     gl::display_settings settings) {
-  if (!floats_) floats_ = std::make_unique<target>(width_, height_, GL_RGBA32F);
+  if (!floats_) floats_ = std::make_unique<target>(width_, height_, GL_RGBA32F, samples_);
   settings.curve = gl::tone_curve::linear;
   draw_into(*floats_, view_projection, eye, settings, {});
   std::vector<float> bottom_up(std::size_t(width_) * height_ * 3);

@@ -1,4 +1,4 @@
-// Headless pictures: an OSMesa context with multisampled framebuffers, the
+// Headless pictures: an OSMesa context with (multisampled) framebuffers, the
 // shared mesh renderer drawing into them, and read-back as 8-bit sRGB or
 // linear float radiance.
 #pragma once
@@ -16,9 +16,10 @@ namespace bounce::headless {
 
 class offscreen_view {
  public:
-  // A width x height view with 4x MSAA (antialiased edges, emitters' rims
-  // included). ok() is false, with error(), when GL is unavailable.
-  offscreen_view(int width, int height);
+  // A width x height view with `samples` x MSAA (antialiased edges,
+  // emitters' rims included; 0 or 1: none, as the window on software GL).
+  // ok() is false, with error(), when GL is unavailable.
+  offscreen_view(int width, int height, int samples = 4);
   ~offscreen_view();
 
   bool ok() const { return error_.empty(); }
@@ -41,7 +42,7 @@ class offscreen_view {
   osmesa_context context_;
   std::unique_ptr<gl::mesh_renderer> renderer_;
   std::unique_ptr<target> bytes_, floats_;
-  int width_, height_;
+  int width_, height_, samples_;
   std::string error_;
 };
 

@@ -9,6 +9,7 @@
 #include <glad/gl.h>
 #include <glm/matrix.hpp>
 
+#include "closed_surface.h"
 #include "gl_program.h"
 #include "scene/texture.h"
 #include "shader_files.h"
@@ -55,23 +56,37 @@ mesh_renderer::~mesh_renderer() {
   const unsigned int buffers[] = {static_buffer_, dynamic_buffer_, index_buffer_};
   for (unsigned int b : buffers)
     if (b) glDeleteBuffers(1, &b);
-  if (program_) glDeleteProgram(program_);
+  for (const program_set& set : programs_)
+    for (const unsigned int program : {set.plain, set.textured, set.mirror, set.glass})
+      if (program) glDeleteProgram(program);
   if (wire_program_) glDeleteProgram(wire_program_);
-  if (textured_program_) glDeleteProgram(textured_program_);
-  if (specular_program_) glDeleteProgram(specular_program_);
   if (background_program_) glDeleteProgram(background_program_);
 }
 
 bool mesh_renderer::init(std::string& error) {
   const shader_source vertex = shader_file("gouraud.vert");
   const shader_source fragment = shader_file("gouraud.frag");
-  program_ = make_program(vertex, fragment, error);
-  if (!program_) return false;
-  textured_program_ = make_program(with_define(vertex, "TEXTURED"), with_define(fragment, "TEXTURED"), error);
-  if (!textured_program_) return false;
-  specular_program_ = make_program(with_define(with_define(vertex, "TEXTURED"), "SPECULAR"),
-                                   with_define(with_define(fragment, "TEXTURED"), "SPECULAR"), error);
-  if (!specular_program_) return false;
+  for (const bool multisampled : {false, true}) {
+    // Each variant of gouraud.vert/.frag (see there) for a framebuffer with
+    // and without multisampling.
+    auto build = [&](std::initializer_list<const char*> defines) {
+      shader_source v = vertex, f = fragment;
+      if (!multisampled) {
+        v = with_define(v, "SINGLE_SAMPLE");
+        f = with_define(f, "SINGLE_SAMPLE");
+      }
+      for (const char* name : defines) {
+        v = with_define(v, name);
+        f = with_define(f, name);
+      }
+      return make_program(v, f, error);
+    };
+    program_set& set = programs_[multisampled ? 1 : 0];
+    if (!(set.plain = build({}))) return false;
+    if (!(set.textured = build({"TEXTURED"}))) return false;
+    if (!(set.mirror = build({"TEXTURED", "SPECULAR"}))) return false;
+    if (!(set.glass = build({"TEXTURED", "SPECULAR", "GLASS"}))) return false;
+  }
   background_program_ = make_program(with_define(vertex, "BACKGROUND"), with_define(fragment, "BACKGROUND"), error);
   if (!background_program_) return false;
   wire_program_ = make_program(vertex, shader_file("wire.frag"), error);
@@ -163,6 +178,7 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
   auto specular = [](const material* m) { return m && glm::any(glm::greaterThan(glm::max(m->kr, m->kt), rgb(0.0))); };
   // (material, surface if specular else -1) -> its elements
   std::map<std::pair<int, int>, std::vector<std::size_t>> runs;
+  std::vector<glm::vec3> display_positions;  // for the specular surfaces' closed_surface test
   auto emit = [&](std::size_t e) {
     for (std::size_t t = 3 * curved.first[e]; t < 3 * curved.first[e + 1]; ++t)
       out.indices.push_back(curved.triangles[t]);
@@ -209,6 +225,14 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
       // A sheet: thinner than a twentieth of its extent (a pane, a flat mirror).
       const glm::vec3 extent = hi - lo;
       probe.thin = std::min({extent.x, extent.y, extent.z}) <= 0.05f * std::max({extent.x, extent.y, extent.z});
+      if (display_positions.empty()) {
+        display_positions.resize(vertex_count);
+        for (std::size_t v = 0; v < vertex_count; ++v) {
+          const float* p = &data[v * mesh_arrays::floats_per_vertex];
+          display_positions[v] = glm::vec3(p[0], p[1], p[2]);
+        }
+      }
+      probe.solid = bounds_solid_outward(out.indices, run.first, run.count, display_positions);
       run.probe = int(out.probes.size());
       out.probes.push_back(probe);
     }
@@ -391,6 +415,9 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
                                int hidden) const {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // rooms are seen from inside; back faces are shown (or highlighted)
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  const program_set& set = programs_[samples > 1 ? 1 : 0];
   glBindVertexArray(vao_);
   const glm::vec3 ambient = settings.ambient ? ambient_ : glm::vec3(0.0f);
   // The uniforms every variant of gouraud.frag shares.
@@ -408,11 +435,19 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
   // Mirrors and glass first: they stand in front of walls more often than
   // behind them, and what they hide then fails the depth test before its
   // fragment shader runs (llvmpipe shades on the CPU; every pixel counts).
-  for (const bool specular : {true, false}) {
-    const unsigned int p = specular ? specular_program_ : textured_program_;
+  // Glass has a program of its own, so that mirrors skip refraction.
+  enum class pass { glass, mirror, textured };
+  auto pass_of = [&](const material_run& run) {
+    if (run.probe < 0) return pass::textured;
+    const glm::vec3 kt = probe_surfaces_[std::size_t(run.probe)].kt;
+    return kt.x > 0.0f || kt.y > 0.0f || kt.z > 0.0f ? pass::glass : pass::mirror;
+  };
+  for (const pass group : {pass::glass, pass::mirror, pass::textured}) {
+    const bool specular = group != pass::textured;
+    const unsigned int p = group == pass::glass ? set.glass : group == pass::mirror ? set.mirror : set.textured;
     bool used = false;
     for (const material_run& run : runs_) {
-      if ((run.probe >= 0) != specular || (specular && run.probe == hidden)) continue;
+      if (pass_of(run) != group || (specular && run.probe == hidden)) continue;
       if (!used) {
         use(p);
         glUniform1i(glGetUniformLocation(p, "image"), 0);
@@ -452,6 +487,11 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
       glUniform3fv(glGetUniformLocation(p, "emitted"), 1, &run.emitted[0]);
       if (specular) {
         const specular_surface& probe = probe_surfaces_[std::size_t(run.probe)];
+        // A solid seen from outside: its far half is hidden by its near half.
+        if (probe.solid && glm::distance(eye, probe.centre) > probe.radius)
+          glEnable(GL_CULL_FACE);
+        else
+          glDisable(GL_CULL_FACE);
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_CUBE_MAP, probes_.texture(std::size_t(run.probe)));
         glUniform3fv(glGetUniformLocation(p, "probe_centre"), 1, &probe.centre[0]);
@@ -468,11 +508,12 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
                      reinterpret_cast<const void*>(std::uintptr_t(run.first * sizeof(unsigned int))));
     }
   }
+  glDisable(GL_CULL_FACE);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, 0);
-  use(program_);
+  use(set.plain);
   glDrawElements(GL_TRIANGLES, GLsizei(plain_count_), GL_UNSIGNED_INT, nullptr);
   // The background where no sample holds a surface: a full-screen triangle
   // at the far plane through the same shader, so it gets the surfaces'

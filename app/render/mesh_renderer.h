@@ -47,6 +47,7 @@ struct specular_surface {
   glm::vec3 centre{0.0f};  // of the surface's bounding box
   float radius = 0.0f;     // of the sphere about the centre through its farthest vertex
   bool thin = false;       // a sheet (a pane, a mirror): light goes straight through
+  bool solid = false;      // bounds a solid, wound outward (closed_surface.h): back faces culled from outside
   glm::vec3 kr{0.0f}, kt{0.0f};
   float ior = 1.0f;
   bool fresnel = false;
@@ -141,7 +142,12 @@ class mesh_renderer {
   void draw_scene(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings,
                   int hidden) const;
 
-  unsigned int program_ = 0, wire_program_ = 0, textured_program_ = 0, specular_program_ = 0, background_program_ = 0;
+  // gouraud.vert/.frag's variants for one kind of framebuffer.
+  struct program_set {
+    unsigned int plain = 0, textured = 0, mirror = 0, glass = 0;
+  };
+  program_set programs_[2];  // [0] single-sample framebuffers, [1] multisampled ones
+  unsigned int wire_program_ = 0, background_program_ = 0;
   unsigned int vao_ = 0, empty_vao_ = 0;
   unsigned int static_buffer_ = 0, dynamic_buffer_ = 0, index_buffer_ = 0;
   std::size_t outline_first_ = 0, outline_count_ = 0;
