@@ -41,7 +41,6 @@ int run_render(const scene& s, const solver_settings& solver, const render_optio
   }
   const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count();
   warn_about_mesh(s, mesh);
-  note_solver_limits(s, solver);
   headless::offscreen_view view(s.view.width, s.view.height, options.msaa);
   if (!view.ok()) {
     std::fprintf(stderr, "error: %s\n", view.error().c_str());

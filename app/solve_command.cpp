@@ -42,7 +42,6 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     say("a priori refinement: %zu marks at contacts, %zu near emitters; %zu -> %zu elements\n", a_priori.contact,
         a_priori.emitter, a_priori.elements_before, a_priori.elements_after);
   warn_about_mesh(s, mesh);
-  note_solver_limits(s, solver);
 
   auto state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
   constexpr std::size_t baseline_rays = 2'000'000;

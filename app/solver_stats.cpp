@@ -65,6 +65,9 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                            {"elements_marked", h.progress.split_marks},
                            {"closed_scene", h.progress.closed},
                            {"final_gather_evaluations", h.progress.gather_evaluations},
+                           // Diffuse light passed on by mirrors and glass (D S+ D).
+                           {"specular_passes", h.progress.specular_passes},
+                           {"specular_shot_fraction", h.progress.specular_shot_fraction},
                            {"warning", h.progress.warning}};
     out["power"] = {{"emitted", to_json(pb.emitted)}};
     return out;
@@ -86,12 +89,6 @@ void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
   if (mesh.uncut_overlaps)
     std::fprintf(stderr, "warning: %s: %zu coplanar overlap(s) could not be cut out of the surface behind\n",
                  s.source.c_str(), mesh.uncut_overlaps);
-}
-
-void note_solver_limits(const scene& s, const solver_settings& settings) {
-  if (settings.method == solver_method::hierarchical && has_specular_materials(s))
-    say("note: the hierarchical solver carries the lights' power through mirrors and glass, but not light passed "
-        "from one diffuse surface to another by way of them; --solver progressive carries both\n");
 }
 
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {

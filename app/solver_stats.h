@@ -22,12 +22,6 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
 // (non-manifold faces, coplanar overlaps it could not cut).
 void warn_about_mesh(const scene& s, const patch_mesh& mesh);
 
-// Says (on standard output, quiet with --quiet) what the chosen solver
-// leaves out of this scene: the hierarchical solver carries the lights'
-// power through mirrors and glass but not light passed from one diffuse
-// surface to another by way of them.
-void note_solver_limits(const scene& s, const solver_settings& settings);
-
 // Writes `stats` to `path`; false with `error` (naming the file) on failure.
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error);
 

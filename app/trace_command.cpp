@@ -44,7 +44,6 @@ bool solve(const scene& s, const solver_settings& solver, solved& out) {
   }
   out.mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
   warn_about_mesh(s, out.mesh);
-  note_solver_limits(s, solver);
   out.state = make_radiosity_state(s, out.mesh, radiosity_params_for(solver));
   progress_line progress("solving");
   run_radiosity(*out.state, solver.stop, [&](const radiosity_state& st) {

@@ -456,6 +456,35 @@ rgb direct_lamp(const hierarchical_solver& solver, std::size_t e) {
   return solver.specular_lamp.empty() ? solver.lamp[e] : solver.lamp[e] - solver.specular_lamp[e];
 }
 
+// The form-factor context on the input mesh, with its vertices' areas
+// (which specular paths deposit over).
+form_factor_context input_context(const hierarchical_solver& solver) {
+  const patch_mesh& mesh = *solver.input_mesh;
+  form_factor_context context = solver.context;
+  context.mesh = &mesh;
+  context.vertex_areas.assign(mesh.vertex_count(), 0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) context.vertex_areas[std::size_t(mesh.elements[e][k])] += mesh.element_areas[e] / 3.0;
+  return context;
+}
+
+// Per element of `mesh`, the mean of its vertices' values.
+std::vector<rgb> vertex_to_element(const patch_mesh& mesh, const std::vector<rgb>& vertex) {
+  std::vector<rgb> out(mesh.element_count());
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    out[e] = (vertex[std::size_t(t[0])] + vertex[std::size_t(t[1])] + vertex[std::size_t(t[2])]) / 3.0;
+  }
+  return out;
+}
+
+// The specular surfaces that paths are sent toward (null: none, or paths off).
+std::shared_ptr<const specular_surfaces> path_targets(const hierarchical_solver& solver) {
+  return solver.context.params.specular_paths > 0
+             ? find_specular_surfaces(*solver.source, *solver.input_mesh, solver.context.mirrors.get())
+             : nullptr;
+}
+
 // The light of the emitters and point lights by way of mirrors and glass,
 // per element of the input mesh (the mean of its vertices'), or nothing
 // when the transfer is off or the scene has nothing specular.
@@ -463,22 +492,50 @@ std::vector<rgb> specular_lamp_of(const hierarchical_solver& solver, std::uint64
   const scene& s = *solver.source;
   const form_factor_params& p = solver.context.params;
   if (!p.specular_transfer || !has_specular_materials(s)) return {};
-  const patch_mesh& mesh = *solver.input_mesh;
-  form_factor_context context = solver.context;  // with the vertices' areas, which the paths deposit over
-  context.mesh = &mesh;
-  context.vertex_areas.assign(mesh.vertex_count(), 0.0);
-  for (std::size_t e = 0; e < mesh.element_count(); ++e)
-    for (int k = 0; k < 3; ++k) context.vertex_areas[std::size_t(mesh.elements[e][k])] += mesh.element_areas[e] / 3.0;
-  const std::shared_ptr<const specular_surfaces> surfaces =
-      p.specular_paths > 0 ? find_specular_surfaces(s, mesh, context.mirrors.get()) : nullptr;
-  if (!surfaces && !context.mirrors) return {};
-  const std::vector<rgb> vertex = specular_light_from_sources(s, context, surfaces.get(), rays);
-  std::vector<rgb> out(mesh.element_count());
+  const std::shared_ptr<const specular_surfaces> surfaces = path_targets(solver);
+  if (!surfaces && !solver.context.mirrors) return {};
+  const form_factor_context context = input_context(solver);
+  return vertex_to_element(*solver.input_mesh, specular_light_from_sources(s, context, surfaces.get(), rays));
+}
+
+// The diffuse light that mirrors and glass pass on, per element of the
+// input mesh: every patch radiating the area-weighted mean of its
+// elements' reflected radiosity B - E, carried as specular_lamp_of
+// carries the emitters'.
+std::vector<rgb> passed_on_specular_light(hierarchical_solver& solver, std::uint64_t& rays) {
+  const patch_mesh& mesh = *solver.mesh;
+  const patch_mesh& input = *solver.input_mesh;
+  std::vector<rgb> reflected(input.patch_count(), rgb(0.0));
+  std::vector<double> area(input.patch_count(), 0.0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    out[e] = (vertex[std::size_t(t[0])] + vertex[std::size_t(t[1])] + vertex[std::size_t(t[2])]) / 3.0;
+    const std::size_t p = std::size_t(mesh.element_patches[e]);
+    if (p >= reflected.size()) continue;
+    reflected[p] += glm::max(solver.radiosity[e] - solver.emission[e], rgb(0.0)) * mesh.element_areas[e];
+    area[p] += mesh.element_areas[e];
   }
-  return out;
+  for (std::size_t p = 0; p < reflected.size(); ++p) reflected[p] = area[p] > 0.0 ? reflected[p] / area[p] : rgb(0.0);
+  const std::shared_ptr<const specular_surfaces> surfaces = path_targets(solver);
+  form_factor_context context = input_context(solver);
+  // A quarter of the shadow rays and paths of a shot: every patch sends
+  // light this way, and their noise averages out over the receivers.
+  context.params.shadow_rays = std::max(1, context.params.shadow_rays / 4);
+  context.params.specular_paths = std::max(1, context.params.specular_paths / 4);
+  // Seeds apart from the emitters' paths, and from pass to pass.
+  std::uint64_t seed = (solver.context.params.seed + 0x51ED27ull * std::uint64_t(solver.progress.specular_passes + 1)) *
+                       0xD1B54A32D192ED03ull;
+  return vertex_to_element(
+      input, specular_light_from_patches(*solver.source, context, surfaces.get(), reflected, seed, rays,
+                                         solver.progress.specular_ray_budget, &solver.progress.specular_shot_fraction));
+}
+
+// Sets the lamp's part by way of mirrors and glass to `per_input` (per
+// element of the input mesh; the pieces of a split element take its value).
+void set_specular_lamp(hierarchical_solver& solver, const std::vector<rgb>& per_input) {
+  for (std::size_t e = 0; e < solver.specular_lamp.size(); ++e) {
+    const rgb next = per_input[std::size_t(solver.input_element[e])];
+    solver.lamp[e] += next - solver.specular_lamp[e];
+    solver.specular_lamp[e] = next;
+  }
 }
 
 // E + lamp: what the system's right-hand side is.
@@ -665,6 +722,8 @@ std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, co
   solver->min_edge = params.min_edge > 0.0 ? params.min_edge : mesh.max_edge / 8.0;
   solver->specular_lamp_input = specular_lamp_of(*solver, solver->progress.rays);
   solver->specular_lamp = solver->specular_lamp_input;
+  solver->input_element.resize(mesh.element_count());
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) solver->input_element[e] = int(e);
   build_for_mesh(*solver, build_cluster_tree(mesh));
   solver->progress.closed = params.normalize_closed && scene_is_closed(*solver);
   restart_hierarchical(*solver);
@@ -676,8 +735,11 @@ void restart_hierarchical(hierarchical_solver& solver) {
     solver.mesh = solver.input_mesh;
     solver.refined_mesh.reset();
     solver.specular_lamp = solver.specular_lamp_input;
+    solver.input_element.resize(solver.mesh->element_count());
+    for (std::size_t e = 0; e < solver.input_element.size(); ++e) solver.input_element[e] = int(e);
     build_for_mesh(solver, build_cluster_tree(*solver.mesh));
   }
+  if (solver.progress.specular_passes > 0) set_specular_lamp(solver, solver.specular_lamp_input);
   solver.links.clear();
   solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
   solver.split_marks.clear();
@@ -698,6 +760,10 @@ void restart_hierarchical(hierarchical_solver& solver) {
 
 bool refinement_done(const hierarchical_solver& solver) {
   return solver.progress.links_final && !splits_pending(solver);
+}
+
+bool specular_passes_done(const hierarchical_solver& solver) {
+  return solver.specular_lamp.empty() || solver.progress.specular_passes >= solver.params.specular_bounces;
 }
 
 bool split_marked_elements(hierarchical_solver& solver) {
@@ -741,6 +807,9 @@ bool split_marked_elements(hierarchical_solver& solver) {
     for (std::size_t e = 0; e < pieces.size(); ++e) pieces[e] = solver.specular_lamp[std::size_t(from[e])];
     solver.specular_lamp = std::move(pieces);
   }
+  std::vector<int> input_element(refined->element_count());
+  for (std::size_t e = 0; e < input_element.size(); ++e) input_element[e] = solver.input_element[std::size_t(from[e])];
+  solver.input_element = std::move(input_element);
   build_for_mesh(solver, std::move(tree));
   solver.links = std::move(links);
   index_links(solver);
@@ -864,6 +933,21 @@ bool step_hierarchical(hierarchical_solver& solver, double refine_below) {
       refine_links(solver, solver.progress.tolerance);
       update_direct(solver);
     }
+    update_residual(solver);
+    return true;
+  }
+  // The final links solved: diffuse light that mirrors and glass pass on
+  // joins the right-hand side, one pass at a time (params.specular_bounces).
+  if (refinement_done(solver) && solver.residual_fraction <= refine_below && !specular_passes_done(solver)) {
+    if (solver.progress.specular_passes == 0)
+      solver.progress.specular_ray_budget =
+          std::max(solver.params.specular_min_rays,
+                   std::uint64_t(solver.params.specular_ray_share * double(solver.progress.rays)));
+    std::vector<rgb> light = passed_on_specular_light(solver, solver.progress.rays);
+    for (std::size_t e = 0; e < light.size(); ++e) light[e] += solver.specular_lamp_input[e];
+    set_specular_lamp(solver, light);
+    ++solver.progress.specular_passes;
+    solver.progress.previous_residual = INFINITY;
     update_residual(solver);
     return true;
   }

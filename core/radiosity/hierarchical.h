@@ -84,6 +84,17 @@ struct hierarchical_params {
   double min_marked_fraction = 1e-3;
   bool parallel = true;
   std::uint64_t seed = 1;
+  // Passes of diffuse light through mirrors and glass (D S+ D): once the
+  // final links are solved, each patch's reflected light is sent through
+  // them and added to the right-hand side; each pass starts from the
+  // solution that the one before led to, so n passes carry light that
+  // mirrors and glass pass on between diffuse surfaces n times.
+  int specular_bounces = 2;
+  // Each pass casts at most this many times the rays the solve cast before
+  // the first (at least specular_min_rays): past it, the most powerful
+  // patches stand in for the rest (specular_light_from_patches).
+  double specular_ray_share = 1.0;
+  std::uint64_t specular_min_rays = 8'000'000;
 };
 
 // 16 bytes: what one link costs (plus the receiver index lists).
@@ -105,9 +116,12 @@ struct hierarchy_progress {
   std::uint64_t rays = 0;
   bool closed = false;  // the scene is closed: form factors normalised
   std::uint64_t gather_evaluations = 0;
-  int element_passes = 0;       // mesh refinements made
-  std::size_t split_marks = 0;  // elements marked for bisection, over all passes
-  std::string warning;          // e.g. the link limit was reached
+  int element_passes = 0;                 // mesh refinements made
+  int specular_passes = 0;                // passes of diffuse light through mirrors and glass made
+  std::uint64_t specular_ray_budget = 0;  // rays a pass may cast (set by the first)
+  double specular_shot_fraction = 1.0;    // share of the reflected power the last pass shot itself
+  std::size_t split_marks = 0;            // elements marked for bisection, over all passes
+  std::string warning;                    // e.g. the link limit was reached
 };
 
 struct hierarchical_solver {
@@ -145,8 +159,11 @@ struct hierarchical_solver {
   // way of mirrors and glass (specular_light_from_sources: found once on
   // the input mesh, each piece of a split element keeping its element's);
   // not direct light. Empty when the specular transfer is off.
+  // Once the final links are solved, it also holds the diffuse light that
+  // they pass on (params.specular_bounces).
   std::vector<rgb> specular_lamp;
   std::vector<rgb> specular_lamp_input;
+  std::vector<int> input_element;  // per element: the input mesh's element it lies in
   std::vector<double> normalizer;  // 1 / form-factor sum in closed scenes, else 1
   std::vector<rgb> radiosity;      // B (the solution)
   std::vector<rgb> direct;         // the part of B received straight from emitters and point lights
@@ -185,6 +202,11 @@ void refine_links(hierarchical_solver& solver, double tolerance);
 // Whether the links are final and no element is still to be split: the
 // solution's discretisation will not change any more.
 bool refinement_done(const hierarchical_solver& solver);
+
+// Whether the passes of diffuse light through mirrors and glass
+// (params.specular_bounces) are all made, or none is due (nothing
+// specular, or the transfer off): the right-hand side is then final too.
+bool specular_passes_done(const hierarchical_solver& solver);
 
 // Bisects the marked elements (conforming, not below min_edge), carries
 // the radiosity over (each piece keeps its element's), extends the tree

@@ -239,8 +239,10 @@ void publish_hierarchical(radiosity_state& state) {
   // Once the final links are solved (the residual below the point where
   // links would be refined), the final gather: each element's light from
   // the links of it and its ancestors, the kernel evaluated at the element
-  // itself. Before, the element solution as it stands.
-  if (refinement_done(h) && h.residual_fraction <= h.params.refine_below && final_gather(*state.hierarchy)) {
+  // itself. Before (or while passes of light through mirrors and glass
+  // are still due), the element solution as it stands.
+  if (refinement_done(h) && specular_passes_done(h) && h.residual_fraction <= h.params.refine_below &&
+      final_gather(*state.hierarchy)) {
     std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
     for (std::size_t e = 0; e < b.size(); ++e) {
       b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
@@ -262,7 +264,7 @@ void publish_hierarchical(radiosity_state& state) {
   state.stats.rays = h.progress.rays;
   state.stats.links = h.links.size();
   state.stats.link_tolerance = h.progress.tolerance;
-  state.stats.links_final = refinement_done(h);
+  state.stats.links_final = refinement_done(h) && specular_passes_done(h);
   state.balance = {};
   state.balance.emitted = rgb(h.emitted_power / 3.0);
 }

@@ -273,24 +273,38 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
   return rays;
 }
 
-std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
-                                             const specular_surfaces* surfaces, std::uint64_t& rays) {
+std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_context& context,
+                                             const specular_surfaces* surfaces, const std::vector<rgb>& radiosity,
+                                             std::uint64_t& seed, std::uint64_t& rays, std::uint64_t ray_budget,
+                                             double* shot_fraction) {
   const patch_mesh& mesh = *context.mesh;
   std::vector<rgb> out(mesh.vertex_count(), rgb(0.0)), irradiance(mesh.vertex_count(), rgb(0.0));
   std::vector<double> f(mesh.vertex_count());
-  std::uint64_t seed = context.params.seed * 0x9E3779B97F4A7C15ull;
-  // Emitting patches: their elements' area-weighted mean emission.
-  std::vector<rgb> emission(mesh.patch_count(), rgb(0.0));
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    const rgb mean = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
-    emission[std::size_t(mesh.element_patches[e])] += mean * mesh.element_areas[e];
-  }
   specular_tally tally;
-  for (std::size_t p = 0; p < mesh.patch_count(); ++p) {
-    if (!positive(emission[p])) continue;
-    const rgb b = emission[p] / mesh.patch_areas[p];
-    const shooter from = patch_shooter(mesh, int(p));
+  // Patches in their order, or, with a budget, the most powerful first.
+  std::vector<int> order;
+  std::vector<double> power(mesh.patch_count(), 0.0);
+  double total = 0.0;
+  for (std::size_t p = 0; p < mesh.patch_count() && p < radiosity.size(); ++p)
+    if (positive(radiosity[p])) {
+      order.push_back(int(p));
+      power[p] = (radiosity[p].r + radiosity[p].g + radiosity[p].b) * mesh.patch_areas[p];
+      total += power[p];
+    }
+  if (ray_budget > 0)
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return power[std::size_t(a)] > power[std::size_t(b)]; });
+  const std::uint64_t rays_before = rays;
+  double shot = 0.0;
+  bool all = true;
+  for (const int p : order) {
+    if (ray_budget > 0 && rays - rays_before >= ray_budget) {
+      all = false;
+      break;
+    }
+    const rgb b = radiosity[std::size_t(p)];
+    shot += power[std::size_t(p)];
+    const shooter from = patch_shooter(mesh, p);
     if (context.mirrors)
       for (const shooter& image : mirror_images(*context.mirrors, from, context.params.mirror_depth)) {
         rays += form_factors_by_rays(context, image, {}, f);
@@ -304,6 +318,29 @@ std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_c
       rays += trace_specular_paths(s, context, *surfaces, source, ++seed, irradiance, tally);
     }
   }
+  // The patches shot stand in for those the budget left out.
+  const double scale = all || shot <= 0.0 ? 1.0 : total / shot;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) out[v] = scale * (out[v] + mesh.vertex_rho[v] * irradiance[v]);
+  if (shot_fraction) *shot_fraction = all || total <= 0.0 ? 1.0 : shot / total;
+  return out;
+}
+
+std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
+                                             const specular_surfaces* surfaces, std::uint64_t& rays) {
+  const patch_mesh& mesh = *context.mesh;
+  std::uint64_t seed = context.params.seed * 0x9E3779B97F4A7C15ull;
+  // Emitting patches: their elements' area-weighted mean emission.
+  std::vector<rgb> emission(mesh.patch_count(), rgb(0.0));
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    const rgb mean = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
+    emission[std::size_t(mesh.element_patches[e])] += mean * mesh.element_areas[e];
+  }
+  for (std::size_t p = 0; p < mesh.patch_count(); ++p)
+    emission[p] = mesh.patch_areas[p] > 0.0 ? emission[p] / mesh.patch_areas[p] : rgb(0.0);
+  std::vector<rgb> out = specular_light_from_patches(s, context, surfaces, emission, seed, rays);
+  std::vector<rgb> irradiance(mesh.vertex_count(), rgb(0.0));
+  specular_tally tally;
   for (const point_light& light : s.lights)
     if (surfaces) {
       specular_source source;

@@ -86,4 +86,17 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
 std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
                                              const specular_surfaces* surfaces, std::uint64_t& rays);
 
+// The same from patches of the context's mesh, each radiating uniformly
+// with `radiosity[patch]` (zero: skipped), without the point lights: what
+// the hierarchical solver adds for diffuse light passed on by mirrors and
+// glass (D S+ D). `seed` is advanced once per patch that traces paths.
+// With a `ray_budget`, the patches go most powerful first and stop once
+// the budget is spent; those shot then stand in for the rest (their light
+// scaled by all the patches' power over theirs, which `shot_fraction`
+// gets when given).
+std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_context& context,
+                                             const specular_surfaces* surfaces, const std::vector<rgb>& radiosity,
+                                             std::uint64_t& seed, std::uint64_t& rays, std::uint64_t ray_budget = 0,
+                                             double* shot_fraction = nullptr);
+
 }  // namespace bounce

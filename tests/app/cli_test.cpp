@@ -671,23 +671,21 @@ TEST(Cli, QuietLeavesOnlyWarningsAndErrors) {
   EXPECT_NE(r.err.find("unknown picture format"), std::string::npos) << r.err;
 }
 
-// A scene with mirrors solved hierarchically is told what that solver
-// leaves out (diffuse light passed on by the mirrors), and how to get it;
-// the progressive solver, which carries it, says nothing of the kind.
-TEST(Cli, HierarchicalSolverSaysWhatItLeavesOutOfMirrors) {
-  const std::string scene = source_path("assets/cornell_caustics/cornell_caustics.json");
-  const std::string fast = " --max-edge 150 --until 0.05 --link-tolerance 1e-3";
-  run_result r = run("solve " + scene + fast);
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("note: the hierarchical solver"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("--solver progressive"), std::string::npos) << r.out;
-  r = run("solve " + scene + " --solver progressive --max-edge 150 --until 0.05");
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out.find("note: the hierarchical solver"), std::string::npos) << r.out;
-  // A scene without mirrors or glass: nothing to say.
+TEST(Cli, HierarchicalSolverStatsSayHowDiffuseLightPassedMirrors) {
+  // The Cornell box with mirrors: the hierarchical solver's passes of
+  // diffuse light through mirrors and glass show in --stats; a scene
+  // without them has none to make.
+  scratch_dir dir;
+  const std::string fast = " --max-edge 150 --until 0.005 --link-tolerance 1e-3 --stats " + dir.path("s.json");
+  run_result r = run("solve " + source_path("assets/cornell_caustics/cornell_caustics.json") + fast);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json stats = nlohmann::json::parse(slurp(dir.path("s.json")));
+  EXPECT_EQ(stats["hierarchical"]["specular_passes"], 2) << stats.dump(2);
+  EXPECT_EQ(stats["hierarchical"]["specular_shot_fraction"], 1.0) << "a small scene: every patch within the budget";
   r = run("solve" + fast);
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out.find("note: the hierarchical solver"), std::string::npos) << r.out;
+  ASSERT_EQ(r.code, 0) << r.err;
+  stats = nlohmann::json::parse(slurp(dir.path("s.json")));
+  EXPECT_EQ(stats["hierarchical"]["specular_passes"], 0) << stats.dump(2);
 }
 
 // Progress bars redraw one line on a terminal and stay out of pipes and logs.

@@ -13,6 +13,7 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/mirror_images.h"
 #include "radiosity/radiosity.h"
+#include "radiosity/specular_paths.h"
 
 namespace bounce {
 namespace {
@@ -163,6 +164,7 @@ TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors
   const patch_mesh mesh = mesh_of(s, 0.125);
   radiosity_params params;
   params.method = solver_method::hierarchical;
+  params.hierarchical.specular_bounces = 0;  // the floor's own light back by the mirror: the test below
   auto state = make_radiosity_state(s, mesh, params);
   for (int i = 0; i < 100 && step_radiosity(*state); ++i) {
   }
@@ -182,6 +184,83 @@ TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors
     expected_sum += expected;
   }
   EXPECT_NEAR(sum / expected_sum, 1.0, 0.01);
+}
+
+// Mean radiosity (green) over the floor's vertices away from its edge.
+double floor_mean(const patch_mesh& mesh, const std::vector<rgb>& radiosity) {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const vec3 p = mesh.receive_points[v];
+    if (!is_floor_vertex(mesh, v) || std::max(std::abs(p.x), std::abs(p.z)) > 1.5) continue;
+    sum += radiosity[v].g;
+    ++n;
+  }
+  return n ? sum / n : 0.0;
+}
+
+TEST(SpecularTransfer, HierarchicalSolverPassesDiffuseLightOnThroughMirrors) {
+  // The mirror ceiling also shows the floor its own light (D S D): the
+  // progressive solver carries it with every shot of the floor's
+  // elements, and the hierarchical one with its passes of the patches'
+  // reflected light through the mirror (params.specular_bounces).
+  const scene s = mirror_ceiling_scene(0.9);
+  const patch_mesh mesh = mesh_of(s, 0.25);
+  auto reference = make_radiosity_state(s, mesh, progressive());
+  for (int i = 0; i < 20000 && step_radiosity(*reference); ++i) {
+  }
+  ASSERT_LT(reference->stats.unshot_fraction, 1e-4);
+  const double expected = floor_mean(mesh, reference->radiosity);
+
+  auto solve = [&](int bounces) {
+    radiosity_params params;
+    params.method = solver_method::hierarchical;
+    params.hierarchical.specular_bounces = bounces;
+    auto state = make_radiosity_state(s, mesh, params);
+    for (int i = 0; i < 200 && step_radiosity(*state); ++i) {
+    }
+    EXPECT_EQ(state->hierarchy->progress.specular_passes, bounces);
+    return floor_mean(mesh, state->radiosity);
+  };
+  const double without = solve(0), with = solve(3);
+  std::printf("floor mean: progressive %.5f, hierarchical %.5f (%.5f without passing diffuse light on)\n", expected,
+              with, without);
+  EXPECT_LT(without, 0.92 * expected);  // what was left out is worth testing
+  EXPECT_NEAR(with, expected, 0.02 * expected);
+}
+
+TEST(SpecularTransfer, PatchesOverTheRayBudgetAreStoodInForByTheBrightest) {
+  // specular_light_from_patches with a budget: the most powerful patches
+  // go first and, once the rays are spent, stand in for the rest (their
+  // light scaled by all the power over theirs). The floor under the mirror
+  // ceiling, uniformly bright, sends its light back to itself.
+  const scene s = mirror_ceiling_scene(0.9);
+  const patch_mesh mesh = mesh_of(s, 0.25);
+  auto state = make_radiosity_state(s, mesh, progressive(4));
+  std::vector<rgb> radiosity(mesh.patch_count(), rgb(0.0));
+  for (std::size_t p = 0; p < mesh.patch_count(); ++p)
+    if (mesh.patch_normals[p].y > 0.5 && std::abs(mesh.patch_corners[p][0].y) < 1e-12) radiosity[p] = rgb(1.0);
+  auto floor_power = [&](const std::vector<rgb>& light) {
+    double sum = 0.0;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (is_floor_vertex(mesh, v)) sum += light[v].g;
+    return sum;
+  };
+  std::uint64_t seed = 1, rays = 0;
+  double fraction = 0.0;
+  const double all =
+      floor_power(specular_light_from_patches(s, state->form_factors, nullptr, radiosity, seed, rays, 0, &fraction));
+  EXPECT_EQ(fraction, 1.0);
+  const std::uint64_t all_rays = rays;
+  rays = 0;
+  const double part = floor_power(
+      specular_light_from_patches(s, state->form_factors, nullptr, radiosity, seed, rays, all_rays / 5, &fraction));
+  std::printf("budget a fifth: %.3f of the power shot, floor light %.4f of all patches'\n", fraction, part / all);
+  EXPECT_GT(fraction, 0.1);
+  EXPECT_LT(fraction, 0.4);
+  EXPECT_LT(rays, all_rays / 3);
+  // The floor's patches are alike: the stand-ins carry nearly the same light.
+  EXPECT_NEAR(part / all, 1.0, 0.1);
 }
 
 // A periscope: the emitter faces up into a 45-degree mirror that sends its
