@@ -207,9 +207,10 @@ TEST(SpecularTransfer, HierarchicalSolverPassesDiffuseLightOnThroughMirrors) {
   const scene s = mirror_ceiling_scene(0.9);
   const patch_mesh mesh = mesh_of(s, 0.25);
   auto reference = make_radiosity_state(s, mesh, progressive());
-  for (int i = 0; i < 20000 && step_radiosity(*reference); ++i) {
+  // To 0.1% of the power unshot: well inside the 2% tolerance below.
+  for (int i = 0; i < 20000 && reference->stats.unshot_fraction > 1e-3 && step_radiosity(*reference); ++i) {
   }
-  ASSERT_LT(reference->stats.unshot_fraction, 1e-4);
+  ASSERT_LE(reference->stats.unshot_fraction, 1e-3);
   const double expected = floor_mean(mesh, reference->radiosity);
 
   auto solve = [&](int bounces) {
