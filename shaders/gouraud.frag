@@ -13,7 +13,7 @@ noperspective centroid in vec3 normal_w;
 noperspective centroid in vec3 position_w;
 #endif
 flat in int has_back_side;           // see gouraud.vert
-smooth centroid in vec3 radiance_s;  // the fallback: see gouraud.vert
+smooth centroid in vec3 radiance_s;  // the fallback, or with SINGLE_SAMPLE the values: see gouraud.vert
 smooth centroid in vec4 unshot_s;
 smooth centroid in vec3 normal_s;
 smooth centroid in vec3 position_s;

@@ -440,7 +440,7 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
   auto pass_of = [&](const material_run& run) {
     if (run.probe < 0) return pass::textured;
     const glm::vec3 kt = probe_surfaces_[std::size_t(run.probe)].kt;
-    return kt.x > 0.0f || kt.y > 0.0f || kt.z > 0.0f ? pass::glass : pass::mirror;
+    return glm::any(glm::greaterThan(kt, glm::vec3(0.0f))) ? pass::glass : pass::mirror;
   };
   for (const pass group : {pass::glass, pass::mirror, pass::textured}) {
     const bool specular = group != pass::textured;
