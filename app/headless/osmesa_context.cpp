@@ -1,8 +1,15 @@
 // OSMesa calls live in this file only: libOSMesa exports every gl* symbol
 // too, so all GL calls elsewhere go through glad's function pointers.
+//
+// libOSMesa is opened on first use rather than linked: it brings in
+// llvmpipe's LLVM, whose relocations cost every process about 60 ms at
+// start-up (a `bounce --version` took 80 ms, 20 ms without it), and most
+// commands never draw.
 #include "osmesa_context.h"
 
 #include <algorithm>
+
+#include <dlfcn.h>
 
 #include <glad/gl.h>
 // glad/gl.h must come first: it defines the GL types osmesa.h needs.
@@ -17,8 +24,48 @@ struct osmesa_context::state {
 
 namespace {
 
+// The five entry points this file calls, from the library opened once.
+struct osmesa_library {
+  decltype(&OSMesaCreateContextAttribs) create_context = nullptr;
+  decltype(&OSMesaDestroyContext) destroy_context = nullptr;
+  decltype(&OSMesaMakeCurrent) make_current = nullptr;
+  decltype(&OSMesaGetProcAddress) get_proc_address = nullptr;
+  std::string error;  // why it could not be opened, if it could not
+};
+
+template <typename F>
+bool find(void* library, const char* name, F& out) {
+  out = reinterpret_cast<F>(dlsym(library, name));
+  return out != nullptr;
+}
+
+osmesa_library open_osmesa() {
+  osmesa_library lib;
+  // The runtime package installs only the versioned name (libosmesa6: .so.8).
+  void* library = nullptr;
+  for (const char* name : {"libOSMesa.so.8", "libOSMesa.so"})
+    if ((library = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
+  if (!library) {
+    const char* why = dlerror();
+    lib.error = std::string("OSMesa: cannot load libOSMesa.so.8 (Debian package libosmesa6): ") + (why ? why : "");
+    return lib;
+  }
+  // Never closed: contexts may outlive any one owner, and the process ends soon after.
+  if (!find(library, "OSMesaCreateContextAttribs", lib.create_context) ||
+      !find(library, "OSMesaDestroyContext", lib.destroy_context) ||
+      !find(library, "OSMesaMakeCurrent", lib.make_current) ||
+      !find(library, "OSMesaGetProcAddress", lib.get_proc_address))
+    lib.error = "OSMesa: libOSMesa lacks an entry point (OSMesa 11.2 or later is needed)";
+  return lib;
+}
+
+const osmesa_library& osmesa() {
+  static const osmesa_library lib = open_osmesa();  // thread-safe, once
+  return lib;
+}
+
 GLADapiproc osmesa_proc(const char* name) {
-  return reinterpret_cast<GLADapiproc>(OSMesaGetProcAddress(name));
+  return reinterpret_cast<GLADapiproc>(osmesa().get_proc_address(name));
 }
 
 }  // namespace
@@ -27,6 +74,10 @@ osmesa_context::osmesa_context(int width, int height)
     : state_(std::make_unique<state>()), width_(width), height_(height) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384) {
     error_ = "OSMesa: image size " + std::to_string(width) + "x" + std::to_string(height) + " out of range";
+    return;
+  }
+  if (!osmesa().error.empty()) {
+    error_ = osmesa().error;
     return;
   }
   const int attributes[] = {OSMESA_FORMAT,
@@ -44,7 +95,7 @@ osmesa_context::osmesa_context(int width, int height)
                             OSMESA_CONTEXT_MINOR_VERSION,
                             3,
                             0};
-  state_->context = OSMesaCreateContextAttribs(attributes, nullptr);
+  state_->context = osmesa().create_context(attributes, nullptr);
   if (!state_->context) {
     error_ = "OSMesa: cannot create a GL 3.3 core context";
     return;
@@ -55,12 +106,12 @@ osmesa_context::osmesa_context(int width, int height)
 }
 
 osmesa_context::~osmesa_context() {
-  if (state_ && state_->context) OSMesaDestroyContext(state_->context);
+  if (state_ && state_->context) osmesa().destroy_context(state_->context);
 }
 
 bool osmesa_context::make_current() {
   if (!state_->context) return false;
-  if (!OSMesaMakeCurrent(state_->context, state_->buffer.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+  if (!osmesa().make_current(state_->context, state_->buffer.data(), GL_UNSIGNED_BYTE, width_, height_)) {
     error_ = "OSMesa: cannot make the context current";
     return false;
   }
