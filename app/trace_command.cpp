@@ -210,7 +210,9 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
       params.ambient_irradiance = rgb(*options.ambient);
     } else {
       solver_settings coarse = solver;
-      if (coarse.max_edge <= 0.0) coarse.max_edge = 2.0 * default_max_edge(s);  // coarse, unless asked for
+      // Coarse, unless asked for: elements twice the solver's own default
+      // (the hierarchical solver's default is already 2.4x the progressive one's).
+      if (coarse.max_edge <= 0.0) coarse.max_edge = 2.0 * mesher_params_for(solver, s).max_edge;
       if (!solve(s, coarse, pass)) return exit_input_error;
       params.ambient_irradiance = mean_indirect_irradiance(*pass.state);
     }
