@@ -6,6 +6,7 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -153,10 +154,18 @@ class tracer {
     rgb sum(0.0);
     const std::size_t first_hit = c.hits ? c.hits->size() : 0;
     c.pixel = y * view_.width + x;
-    for (const vec2& o : offsets) {
-      const vec3 d = camera_.direction(x + o.x, y + o.y);
+    // The samples of one pixel are coherent: their camera rays go in
+    // packets (docs/performance.md, "Ray core").
+    const std::vector<vec3> eyes(offsets.size(), view_.eye);
+    std::vector<vec3> directions(offsets.size());
+    std::vector<std::optional<ray_hit>> hits(offsets.size());
+    for (std::size_t i = 0; i < offsets.size(); ++i)
+      directions[i] = camera_.direction(x + offsets[i].x, y + offsets[i].y);
+    rays_.intersect_packets(eyes, directions, hits);
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
       ++c.primary;
-      sum += p_.method == integrator::path ? path(view_.eye, d, rng, c) : whitted(view_.eye, d, 0, rgb(1.0), rng, c);
+      sum += p_.method == integrator::path ? path(view_.eye, directions[i], hits[i], rng, c)
+                                           : whitted(directions[i], hits[i], 0, rgb(1.0), rng, c);
     }
     if (c.hits)
       for (std::size_t i = first_hit; i < c.hits->size(); ++i) (*c.hits)[i].weight /= double(offsets.size());
@@ -267,7 +276,12 @@ class tracer {
   }
 
   rgb whitted(const vec3& origin, const vec3& d, int depth, const rgb& weight, random_stream& rng, counters& c) const {
-    const auto hit = rays_.intersect(origin, d);
+    return whitted(d, rays_.intersect(origin, d), depth, weight, rng, c);
+  }
+
+  // The same, from the ray's hit found beforehand (a camera ray's, in a packet).
+  rgb whitted(const vec3& d, const std::optional<ray_hit>& hit, int depth, const rgb& weight, random_stream& rng,
+              counters& c) const {
     if (!hit) return escaped_radiance(s_, d);
     const surface_point sp = describe(*hit, d);
     rgb radiance = sp.front ? sp.mat->ke : rgb(0.0);
@@ -400,11 +414,12 @@ class tracer {
   // the area emitters at diffuse vertices (combined with the diffuse
   // bounce by multiple importance sampling), one lobe chosen per bounce in
   // proportion to its weight, Russian roulette after a few bounces.
-  rgb path(vec3 origin, vec3 d, random_stream& rng, counters& c) const {
+  // `first` is the camera ray's hit, found beforehand in a packet.
+  rgb path(vec3 origin, vec3 d, const std::optional<ray_hit>& first, random_stream& rng, counters& c) const {
     rgb radiance(0.0), throughput(1.0);
     double diffuse_pdf = 0.0;  // solid-angle density of the last bounce if it was diffuse; 0 after specular ones
     for (int bounce = 0;; ++bounce) {
-      const auto hit = rays_.intersect(origin, d);
+      const auto hit = bounce == 0 ? first : rays_.intersect(origin, d);
       if (!hit) {
         // The sky is found by the bounces' own cosine sampling, which is
         // importance sampling for a diffuse surface under a smooth sky.

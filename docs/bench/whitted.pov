@@ -23,11 +23,11 @@ global_settings {
 
 // Bounce's one-pass ambient term: rho / pi times the ambient irradiance
 // that `bounce trace --no-radiosity` takes from its coarse solution. It
-// prints it ("one pass: ambient irradiance 0.06184 0.04846 0.03729" when
+// prints it ("one pass: ambient irradiance 0.07956 0.05769 0.0397" when
 // this was measured); pass another with Declare=AmbientR=... etc.
-#ifndef (AmbientR) #declare AmbientR = 0.06184; #end
-#ifndef (AmbientG) #declare AmbientG = 0.04846; #end
-#ifndef (AmbientB) #declare AmbientB = 0.03729; #end
+#ifndef (AmbientR) #declare AmbientR = 0.07956; #end
+#ifndef (AmbientG) #declare AmbientG = 0.05769; #end
+#ifndef (AmbientB) #declare AmbientB = 0.0397; #end
 #declare Ambient = rgb <AmbientR, AmbientG, AmbientB> / pi;
 
 camera {
