@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 namespace bounce {
 namespace {
@@ -17,6 +18,48 @@ double jitter(std::uint64_t seed, std::uint64_t k) {
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   z ^= z >> 31;
   return double(z >> 11) * 0x1p-53;
+}
+
+// Ward & Heckbert's translation gradient, in the form Krivanek & Gautron
+// give for cosine-weighted cells. Moving the point shifts the walls
+// between neighbouring cells: the wall between theta rings j - 1 and j
+// (at sin^2 theta = j / M) moves along u_k, the cell's mid-direction in
+// the tangent plane; the wall between phi sectors k - 1 and k moves
+// along v_k-, that wall's normal. Each wall moves by the distance moved
+// over the nearer hit's distance, and passes light L_new - L_old. Misses
+// are infinitely far: their walls do not move.
+std::array<vec3, 3> translation_gradient(const std::vector<gather_sample>& cells, int m, int n, const vec3& t,
+                                         const vec3& b) {
+  std::array<vec3, 3> out{vec3(0.0), vec3(0.0), vec3(0.0)};
+  auto at = [&](int j, int k) -> const gather_sample& {
+    return cells[std::size_t(k) * std::size_t(m) + std::size_t(j)];
+  };
+  auto add = [&](const vec3& direction, double weight, const rgb& difference) {
+    for (int ch = 0; ch < 3; ++ch) out[std::size_t(ch)] += direction * (weight * difference[ch]);
+  };
+  for (int k = 0; k < n; ++k) {
+    const double mid = 2.0 * pi * (k + 0.5) / n, wall = 2.0 * pi * k / n;
+    const vec3 u = std::cos(mid) * t + std::sin(mid) * b;
+    const vec3 v = -std::sin(wall) * t + std::cos(wall) * b;  // the sector wall's normal, towards sector k
+    for (int j = 0; j < m; ++j) {
+      const gather_sample& here = at(j, k);
+      if (j > 0) {
+        const gather_sample& inner = at(j - 1, k);
+        const double r = std::min(here.distance, inner.distance);
+        const double sin2 = double(j) / m;  // the ring wall's sin^2 theta
+        if (r > 0.0 && std::isfinite(r))
+          add(u, 2.0 * pi / n * (1.0 - sin2) * std::sqrt(sin2) / r, here.radiance - inner.radiance);
+      }
+      const gather_sample& previous = at(j, (k + n - 1) % n);
+      const double r = std::min(here.distance, previous.distance);
+      if (n > 1 && r > 0.0 && std::isfinite(r)) {
+        const double cos_in = std::sqrt(1.0 - double(j) / m), cos_out = std::sqrt(1.0 - double(j + 1) / m);
+        const double sin_mid = std::sqrt((j + 0.5) / m), cos_mid = std::sqrt(1.0 - (j + 0.5) / m);
+        add(v, cos_mid * (cos_in - cos_out) / (sin_mid * r), here.radiance - previous.radiance);
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -34,6 +77,7 @@ int gather_irradiance(const vec3& position, const vec3& normal, int rays, std::u
   rgb sum(0.0);
   double inverse_distances = 0.0;
   std::array<vec3, 3> rotation{vec3(0.0), vec3(0.0), vec3(0.0)};
+  std::vector<gather_sample> cells(std::size_t(m) * std::size_t(n));  // [k * m + j]
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < m; ++j) {
       const std::uint64_t cell = std::uint64_t(k) * std::uint64_t(m) + std::uint64_t(j);
@@ -42,6 +86,7 @@ int gather_irradiance(const vec3& position, const vec3& normal, int rays, std::u
       const vec3 dir =
           glm::normalize(sin_theta * std::cos(phi) * t + sin_theta * std::sin(phi) * b + cos_theta * normal);
       const gather_sample g = cast(dir, seed ^ (0xD1B54A32D192ED03ull * (cell + 1)));
+      cells[cell] = g;
       sum += g.radiance;
       if (g.distance > 0.0 && std::isfinite(g.distance)) inverse_distances += 1.0 / g.distance;
       // Turning the normal by d about u moves E by d u . (n x omega) L / cos
@@ -58,6 +103,7 @@ int gather_irradiance(const vec3& position, const vec3& normal, int rays, std::u
   out.irradiance = sum * scale;
   out.radius = inverse_distances > 0.0 ? double(m * n) / inverse_distances : std::numeric_limits<double>::infinity();
   for (int ch = 0; ch < 3; ++ch) out.rotation[std::size_t(ch)] = rotation[std::size_t(ch)] * scale;
+  out.translation = translation_gradient(cells, m, n, t, b);
   return m * n;
 }
 
@@ -101,9 +147,10 @@ std::optional<rgb> irradiance_cache::lookup(const vec3& p, const vec3& n, double
     const double w = ward_weight(r, p, n);
     if (!(w > threshold)) continue;
     if (!std::isfinite(w)) return r.irradiance;  // on the record itself
-    const vec3 turn = glm::cross(r.normal, n);
+    const vec3 turn = glm::cross(r.normal, n), move = p - r.position;
     rgb e = r.irradiance;
-    for (int ch = 0; ch < 3; ++ch) e[ch] += glm::dot(turn, r.rotation[std::size_t(ch)]);
+    for (int ch = 0; ch < 3; ++ch)
+      e[ch] += glm::dot(turn, r.rotation[std::size_t(ch)]) + glm::dot(move, r.translation[std::size_t(ch)]);
     sum += w * glm::max(e, rgb(0.0));
     weights += w;
   }

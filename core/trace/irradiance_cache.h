@@ -23,6 +23,9 @@ struct irradiance_record {
   double radius = 0.0;  // R: harmonic mean distance to what the gather rays hit, clamped
   // dE per radian of rotation of the normal, per channel: E(n) ~ E + (n_record x n) . rotation[c].
   std::array<vec3, 3> rotation{vec3(0.0), vec3(0.0), vec3(0.0)};
+  // dE per unit of distance moved in the tangent plane, per channel:
+  // E(p) ~ E + (p - position) . translation[c].
+  std::array<vec3, 3> translation{vec3(0.0), vec3(0.0), vec3(0.0)};
 };
 
 // What a gather ray in direction `dir` sees: the radiance arriving back
@@ -36,8 +39,10 @@ struct gather_sample {
 // directions, stratified in M x N cells of (sin^2 theta, phi) with
 // M = sqrt(rays / pi) and N = rays / M (Ward's proportions), each cell
 // jittered by the seed: E = pi / (M N) sum L. Also the harmonic mean
-// distance (unclamped) and the rotation gradient. Returns the number of
-// rays cast through `cast`.
+// distance (unclamped), and the rotation and translation gradients (Ward &
+// Heckbert 1992, the latter from how L changes between neighbouring cells
+// and how far away their hits are). Returns the number of rays cast
+// through `cast`.
 int gather_irradiance(const vec3& position, const vec3& normal, int rays, std::uint64_t seed,
                       const std::function<gather_sample(const vec3& dir, std::uint64_t ray_seed)>& cast,
                       irradiance_record& out);
