@@ -203,7 +203,7 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
         static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
         pass.state->stats.seconds);
     field = std::make_unique<radiosity_field>(*pass.state->mesh, pass.state->radiosity, pass.state->direct,
-                                              ambient_radiosity(*pass.state));
+                                              ambient_radiosity(*pass.state), pass.state->caustic);
   } else if (params.method == integrator::whitted) {
     params.diffuse = diffuse_source::ambient;
     if (options.ambient) {

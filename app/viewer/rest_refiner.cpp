@@ -46,7 +46,8 @@ void rest_refiner::trace_passes(std::uint64_t run, const scene& source, const ca
   const ray_scene rays(source);
   std::unique_ptr<radiosity_field> field;
   if (mesh && solution && solution->radiosity.size() == mesh->vertex_count())
-    field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct, solution->ambient);
+    field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct, solution->ambient,
+                                              solution->caustic);
   trace_params p;
   p.spp = samples_per_pass;
   p.light_samples = 4;  // a pass is cheap; the passes average the shadows

@@ -54,7 +54,8 @@ void still_job::start(std::shared_ptr<const scene> source, const camera& view, s
     const ray_scene rays(*source);
     std::unique_ptr<radiosity_field> field;
     if (mesh && solution && solution->radiosity.size() == mesh->vertex_count()) {
-      field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct, solution->ambient);
+      field = std::make_unique<radiosity_field>(*mesh, solution->radiosity, solution->direct, solution->ambient,
+                                                solution->caustic);
     } else if (p.method != integrator::path) {
       // No solution yet: one-pass Whitted, with no ambient term.
       p.method = integrator::whitted;

@@ -254,6 +254,15 @@ void publish_hierarchical(radiosity_state& state) {
     state.radiosity = element_to_vertex(mesh, h.radiosity);
     state.direct = element_to_vertex(mesh, h.direct);
   }
+  // The lights' light through mirrors and glass enters B as it is, a
+  // right-hand-side term: B's caustic part is that term.
+  state.caustic.clear();
+  if (!h.specular_lamp_input.empty()) {
+    std::vector<rgb> caustic(mesh.element_count());
+    for (std::size_t e = 0; e < caustic.size(); ++e)
+      caustic[e] = h.specular_lamp_input[std::size_t(h.input_element[e])];
+    state.caustic = element_to_vertex(mesh, caustic);
+  }
   state.unshot = h.residual;
   state.stats.unshot_fraction = h.residual_fraction;
   // A step of the hierarchical solver (a block of iterations, or links
@@ -514,6 +523,7 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& s
   snap->ambient = ambient_radiosity(state);
   snap->radiosity = state.radiosity;
   snap->direct = state.direct;
+  snap->caustic = state.caustic;
   std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
   std::vector<int> count(mesh.vertex_count(), 0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e)

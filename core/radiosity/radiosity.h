@@ -89,8 +89,13 @@ struct radiosity_state {
   radiosity_params params;
   form_factor_context form_factors;
 
-  std::vector<rgb> radiosity;        // B per vertex
-  std::vector<rgb> direct;           // the part of B received straight from emitters and point lights
+  std::vector<rgb> radiosity;  // B per vertex
+  std::vector<rgb> direct;     // the part of B received straight from emitters and point lights
+  // The part of B received from emitters and point lights by way of
+  // mirrors and glass (L S+ D), per vertex, where the solver keeps it
+  // apart (the hierarchical solver); empty otherwise. The still replaces
+  // it with the caustic photon map where detail matters (ray_tracer.cpp).
+  std::vector<rgb> caustic;
   std::vector<rgb> unshot;           // U per element
   std::vector<rgb> unshot_emission;  // the part of U that is the element's own emission, not yet shot
   power_balance balance;
@@ -168,6 +173,7 @@ struct radiosity_snapshot {
   std::uint64_t version = 0;       // shots and refinements so far; increases with every step
   std::vector<rgb> radiosity;      // per vertex
   std::vector<rgb> direct;         // per vertex: the part of radiosity straight from the lights
+  std::vector<rgb> caustic;        // per vertex: the part by way of mirrors and glass (may be empty)
   std::vector<rgb> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
   rgb ambient{0.0};
   radiosity_stats stats;

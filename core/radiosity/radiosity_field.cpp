@@ -89,13 +89,14 @@ bool closest_element(RTCPointQueryFunctionArguments* args) {
 }  // namespace
 
 radiosity_field::radiosity_field(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct,
-                                 const rgb& ambient)
+                                 const rgb& ambient, std::span<const rgb> caustic)
     : mesh_(mesh), state_(std::make_unique<embree_state>()) {
   vertex_values_.resize(mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const rgb unshot = mesh.vertex_rho[v] * ambient;  // indirect light by definition
     const rgb reflected = radiosity[v] - mesh.vertex_emission[v] + unshot;
-    vertex_values_[v] = {reflected, direct.empty() ? reflected : reflected - direct[v]};
+    vertex_values_[v] = {reflected, direct.empty() ? reflected : reflected - direct[v],
+                         caustic.empty() ? rgb(0.0) : caustic[v]};
   }
 
   int surfaces = 0;
@@ -154,6 +155,7 @@ diffuse_radiosity radiosity_field::at(int surface, const vec3& point) const {
   for (int k = 0; k < 3; ++k) {
     out.reflected += q.weights[k] * vertex_values_[t[k]].reflected;
     out.indirect += q.weights[k] * vertex_values_[t[k]].indirect;
+    out.caustic += q.weights[k] * vertex_values_[t[k]].caustic;
   }
   return out;
 }

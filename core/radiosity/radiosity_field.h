@@ -16,6 +16,7 @@ namespace bounce {
 struct diffuse_radiosity {
   rgb reflected{0.0};  // B - E: the light the surface reflects (radiosity units)
   rgb indirect{0.0};   // the part of it that did not come straight from an emitter or point light
+  rgb caustic{0.0};    // the part of it from the lights by way of mirrors and glass (0 if not kept apart)
 };
 
 class radiosity_field {
@@ -23,10 +24,11 @@ class radiosity_field {
   // `radiosity` and `direct` per vertex of `mesh` (as radiosity_state keeps
   // them; `direct` may be empty: then indirect = reflected). `ambient`
   // (ambient_radiosity of the state) stands in for the light still unshot:
-  // each vertex reflects rho times it, as the live view shows it. The mesh
-  // must outlive the field.
+  // each vertex reflects rho times it, as the live view shows it.
+  // `caustic` (may be empty) is the state's part of B by way of mirrors
+  // and glass. The mesh must outlive the field.
   radiosity_field(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct,
-                  const rgb& ambient = rgb(0.0));
+                  const rgb& ambient = rgb(0.0), std::span<const rgb> caustic = {});
   ~radiosity_field();
   radiosity_field(const radiosity_field&) = delete;
   radiosity_field& operator=(const radiosity_field&) = delete;

@@ -34,8 +34,9 @@ using kd_tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor
 // of all, from taking the k places and shrinking the radius.
 class eligible_nearest {
  public:
-  eligible_nearest(const std::vector<photon>& photons, const vec3& normal, std::size_t k, double radius2)
-      : photons_(photons), normal_(normal), k_(k), limit_(radius2) {
+  eligible_nearest(const std::vector<photon>& photons, const vec3& point, const vec3& normal, std::size_t k,
+                   double radius2)
+      : photons_(photons), point_(point), normal_(normal), k_(k), limit_(radius2) {
     found_.reserve(k + 1);
   }
 
@@ -46,6 +47,9 @@ class eligible_nearest {
   bool addPoint(double distance2, std::uint32_t index) {
     const photon& p = photons_[index];
     if (glm::dot(p.normal, normal_) <= photon_normal_agreement || glm::dot(p.incoming, normal_) <= 0.0) return true;
+    // A disc, not a sphere: photons far off the tangent plane lie on
+    // another surface facing the same way (a floor under a table top).
+    if (std::abs(glm::dot(p.position - point_, normal_)) > photon_plane_slope * std::sqrt(distance2)) return true;
     const std::pair<double, std::uint32_t> entry(distance2, index);
     found_.insert(std::upper_bound(found_.begin(), found_.end(), entry), entry);
     if (found_.size() > k_) found_.pop_back();
@@ -56,7 +60,7 @@ class eligible_nearest {
 
  private:
   const std::vector<photon>& photons_;
-  vec3 normal_;
+  vec3 point_, normal_;
   std::size_t k_;
   double limit_;
   std::vector<std::pair<double, std::uint32_t>> found_;  // (distance^2, index), nearest first
@@ -103,7 +107,7 @@ photon_estimate photon_map::estimate(const vec3& point, const vec3& normal, doub
   if (!tree_ || !tree_->index) return out;
   // nanoflann offers points strictly closer than the worst distance: one
   // ulp more keeps photons at exactly `radius`.
-  eligible_nearest result(tree_->photons, normal, std::size_t(max_photons),
+  eligible_nearest result(tree_->photons, point, normal, std::size_t(max_photons),
                           std::nextafter(radius * radius, std::numeric_limits<double>::infinity()));
   const double query[3] = {point.x, point.y, point.z};
   tree_->index->findNeighbors(result, query, nanoflann::SearchParams());

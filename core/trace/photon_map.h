@@ -36,6 +36,13 @@ constexpr double cone_filter_k = 1.1;
 // or a wall meeting the floor in a corner, and do not count.
 constexpr double photon_normal_agreement = 0.5;
 
+// Photons count only within this slope of the query's tangent plane
+// (|offset . n| at most this times the distance): the search is a disc,
+// not a sphere (Jensen's compressed sphere), so a parallel surface
+// nearby, such as a floor under a table top, lends none of its light. On
+// a curved surface of radius rho, photons count up to about rho / 2 away.
+constexpr double photon_plane_slope = 0.25;
+
 struct photon_estimate {
   rgb irradiance{0.0};  // W / m^2 (scene units squared)
   int photons = 0;      // how many counted

@@ -362,7 +362,20 @@ class tracer {
       if (sp.front && positive(sp.mat->ke) && !rays_.is_sampled_emitter(sp.hit.surface))
         out.radiance += throughput * sp.mat->ke;
       if (positive(sp.rho)) {
-        out.radiance += throughput * field_->at(sp.hit.surface, hit->point).reflected * sp.texture_detail / pi;
+        const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point);
+        if (depth > 0 && caustics_ && sp.front) {
+          // Seen through a mirror or a lens, a small patch of surface
+          // fills much of the hemisphere, so the detail of the caustic on
+          // it matters: the photons' estimate replaces the solution's
+          // smooth share of the lights' light through mirrors and glass.
+          // (Through glass, the ceiling above a glass ball sees the
+          // focused spot under it.)
+          out.radiance += throughput *
+                          ((b.reflected - b.caustic) * sp.texture_detail / pi +
+                           sp.rho / pi * caustics_->irradiance_estimate(hit->point, sp.n, caustic_radius_, caustic_k_));
+        } else {
+          out.radiance += throughput * b.reflected * sp.texture_detail / pi;
+        }
       }
       if (depth + 1 >= p_.max_depth) return out;
       const double p_mirror = mean_channel(sp.kr), p_transmit = sp.refracted ? mean_channel(sp.kt) : 0.0;

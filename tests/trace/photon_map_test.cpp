@@ -97,6 +97,41 @@ TEST(PhotonMap, PhotonsOnTheOtherSideOrFromBehindDoNotCount) {
   EXPECT_EQ(alone.estimate(query, vec3(1, 0, 0), 1.05, 1000000).photons, 0);
 }
 
+TEST(PhotonMap, AParallelSurfaceNearbyLendsNoneOfItsPhotons) {
+  // The grid as a floor, and a table top 0.3 above it (the same photons
+  // moved up, ten times brighter). From the table, the search is a disc:
+  // the floor's photons, 0.3 off its plane, do not count, even when they
+  // are among the nearest in space; nor the table's from the floor.
+  std::vector<photon> photons = grid_photons(false);
+  const std::size_t floor_count = photons.size();
+  for (std::size_t i = 0; i < floor_count; ++i) {
+    photon p = photons[i];
+    p.position.y += 0.3;
+    p.power *= 10.0;
+    photons.push_back(p);
+  }
+  const photon_map both(std::move(photons));
+  const photon_map floor(grid_photons(false));
+  const vec3 on_table = query + vec3(0, 0.3, 0);
+  for (const double r : {0.35, 1.05}) {
+    const photon_estimate table = both.estimate(on_table, up, r, 1000000, photon_filter::box);
+    EXPECT_EQ(table.photons, grid_count(query, r)) << r;  // the table's own, and no more
+    EXPECT_NEAR(table.irradiance.r, 10.0 * grid_count(query, r) * grid_power / (pi * r * r), 1e-9) << r;
+    EXPECT_EQ(both.estimate(query, up, r, 1000000, photon_filter::box).irradiance,
+              floor.estimate(query, up, r, 1000000, photon_filter::box).irradiance);
+  }
+  // Photons near the plane still count: a surface curving away from it by
+  // 0.2 at distance 1 (slope 0.2 at most, under the limit).
+  std::vector<photon> curved = grid_photons(false);
+  int within = 0;
+  for (photon& p : curved) {
+    p.position.y = 0.2 * glm::dot(p.position, p.position);
+    within += glm::length(p.position - query) <= 1.0;
+  }
+  EXPECT_GT(within, 300);
+  EXPECT_EQ(photon_map(curved).estimate(query, up, 1.0, 1000000, photon_filter::box).photons, within);
+}
+
 TEST(PhotonMap, KNearestShrinkTheRadiusToTheKthPhoton) {
   const photon_map map(grid_photons(false));
   std::vector<double> distances;
