@@ -50,9 +50,14 @@ rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
   return sum;
 }
 
-// Pull: element radiosities up the tree as area-weighted means, level by level.
-void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& node_b) {
+// Pull: element radiosities up the tree as area-weighted means, level by
+// level; and for clusters, what their elements send towards each of the
+// six axis directions (sum of B x area x max(0, +-n_k)), the radiosity
+// counterpart of cluster_node::projected.
+void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& node_b,
+          std::vector<std::array<rgb, 6>>& sent) {
   const cluster_tree& tree = solver.tree;
+  sent.resize(solver.buffers.bins.size());
   for (int level = int(tree.levels.size()) - 2; level >= 0; --level) {
     const std::size_t begin = std::size_t(tree.levels[level]), end = std::size_t(tree.levels[level + 1]);
     for_each_block(solver.params.parallel, end - begin, 4096, [&](std::size_t b, std::size_t e) {
@@ -66,9 +71,39 @@ void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vec
         for (int c = node.first_child; c < node.first_child + node.child_count; ++c)
           sum += node_b[c] * tree.nodes[c].area;
         node_b[i] = node.area > 0.0 ? sum / node.area : rgb(0.0);
+        const int slot = solver.cube_slot[i];
+        if (slot < 0) continue;
+        std::array<rgb, 6> out{};
+        for (int c = node.first_child; c < node.first_child + node.child_count; ++c) {
+          const cluster_node& child = tree.nodes[c];
+          if (const int child_slot = solver.cube_slot[c]; child_slot >= 0) {
+            for (int k = 0; k < 6; ++k) out[k] += sent[child_slot][k];
+          } else {
+            for (int k = 0; k < 3; ++k)
+              out[2 * k + (child.normal[k] >= 0.0 ? 0 : 1)] += node_b[c] * (child.area * std::abs(child.normal[k]));
+          }
+        }
+        sent[slot] = out;
       }
     });
   }
+}
+
+// The radiosity a source node sends towards unit direction d. A cluster's
+// elements face many ways, and a receiver sees those that face it: the
+// floor and a table top from above, the table's dark underside from
+// below. Its area-weighted mean radiosity, which counts them all alike,
+// made every cluster link carry the wrong mix, and in a room lit from
+// above the ceiling came out 9% dark at the default tolerance.
+rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& node_b,
+                   const std::vector<std::array<rgb, 6>>& sent, int source, const vec3& d) {
+  const int slot = solver.cube_slot[std::size_t(source)];
+  if (slot < 0) return node_b[std::size_t(source)];
+  const double area = projected_area(solver.tree.nodes[std::size_t(source)], d);
+  if (!(area > 0.0)) return node_b[std::size_t(source)];
+  rgb sum(0.0);
+  for (int k = 0; k < 3; ++k) sum += std::abs(d[k]) * sent[std::size_t(slot)][2 * k + (d[k] >= 0.0 ? 0 : 1)];
+  return sum / area;
 }
 
 // Gather over the links into their receivers, then push the irradiance
@@ -76,7 +111,7 @@ void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vec
 void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
   const cluster_tree& tree = solver.tree;
   hierarchical_solver::transport_buffers& buf = solver.buffers;
-  pull(solver, x, buf.node_b);
+  pull(solver, x, buf.node_b, buf.sent);
   const std::size_t n = tree.nodes.size();
   for_each_block(solver.params.parallel, n, 1024, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -86,15 +121,21 @@ void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, s
       std::array<rgb, 6> bins{};
       for (std::size_t l = solver.link_offsets[i]; l < solver.link_offsets[i + 1]; ++l) {
         const hierarchy_link& link = solver.links[l];
-        const rgb value = double(link.factor) * double(link.visibility) * buf.node_b[link.source];
-        if (slot < 0) {
-          sum += value;
+        const bool cluster_source = solver.cube_slot[link.source] >= 0;
+        if (slot < 0 && !cluster_source) {
+          sum += double(link.factor) * double(link.visibility) * buf.node_b[link.source];
           continue;
         }
         const vec3 towards = tree.nodes[link.source].centroid - node.centroid;
         const double length = glm::length(towards);
         if (!(length > 0.0)) continue;  // no direction (and its estimate is 0)
         const vec3 d = towards / length;
+        const rgb value = double(link.factor) * double(link.visibility) *
+                          sent_radiosity(solver, buf.node_b, buf.sent, link.source, -d);
+        if (slot < 0) {
+          sum += value;
+          continue;
+        }
         for (int k = 0; k < 3; ++k) bins[2 * k + (d[k] >= 0.0 ? 0 : 1)] += std::abs(d[k]) * value;
       }
       if (slot < 0)
@@ -829,7 +870,8 @@ bool split_marked_elements(hierarchical_solver& solver) {
 void refine_links(hierarchical_solver& solver, double tolerance) {
   if (solver.tree.nodes.empty()) return;
   std::vector<rgb> node_b(solver.tree.nodes.size());
-  pull(solver, solver.radiosity, node_b);
+  std::vector<std::array<rgb, 6>> sent;
+  pull(solver, solver.radiosity, node_b, sent);
   tbb::enumerable_thread_specific<std::vector<hierarchy_link>> out;
   std::atomic<std::size_t> count{0};
   std::atomic<std::uint64_t> rays{0};
@@ -1013,8 +1055,9 @@ bool final_gather(hierarchical_solver& solver) {
   const cluster_tree& tree = solver.tree;
   const patch_mesh& mesh = *solver.mesh;
   std::vector<rgb> node_b(tree.nodes.size()), node_e(tree.nodes.size());
-  pull(solver, solver.radiosity, node_b);
-  pull(solver, solver.emission, node_e);
+  std::vector<std::array<rgb, 6>> sent_b, sent_e;
+  pull(solver, solver.radiosity, node_b, sent_b);
+  pull(solver, solver.emission, node_e, sent_e);
   const std::size_t n = mesh.element_count();
   solver.gathered.assign(n, rgb(0.0));
   solver.gathered_direct.assign(n, rgb(0.0));
@@ -1030,6 +1073,7 @@ bool final_gather(hierarchical_solver& solver) {
           const hierarchy_link& link = solver.links[l];
           const cluster_node& s = tree.nodes[link.source];
           double f = 0.0;
+          vec3 dir(0.0);
           if (s.leaf()) {
             const glm::ivec3 t = mesh.elements[s.element];
             const vec3 polygon[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
@@ -1037,14 +1081,14 @@ bool final_gather(hierarchical_solver& solver) {
           } else {
             const vec3 d = s.centroid - leaf.centroid;
             const double r2 = glm::dot(d, d);
-            const vec3 dir = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
+            dir = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
             const double send = projected_area(s, -dir);
             f = std::min(1.0, std::max(0.0, glm::dot(leaf.normal, dir)) * send / (std::numbers::pi * r2 + send));
           }
           f *= double(link.visibility);
           factors += f;
-          sum += f * node_b[link.source];
-          direct += f * node_e[link.source];
+          sum += f * sent_radiosity(solver, node_b, sent_b, link.source, -dir);
+          direct += f * sent_radiosity(solver, node_e, sent_e, link.source, -dir);
           ++count;
         }
       }

@@ -148,6 +148,7 @@ struct hierarchical_solver {
     std::vector<rgb> node_b;
     std::vector<rgb> gathered;             // oriented nodes: irradiance gathered by their own links, then pushed
     std::vector<std::array<rgb, 6>> bins;  // clusters: irradiance per unit area facing +x, -x, ...
+    std::vector<std::array<rgb, 6>> sent;  // clusters: what their elements send towards +x, -x, ... (pull)
   };
   mutable transport_buffers buffers;
 
