@@ -53,11 +53,11 @@ rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
 // Pull: element radiosities up the tree as area-weighted means, level by
 // level; and for clusters, what their elements send towards each of the
 // six axis directions (sum of B x area x max(0, +-n_k)), the radiosity
-// counterpart of cluster_node::projected.
+// counterpart of cluster_node::projected (when `sent` is given).
 void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& node_b,
-          std::vector<std::array<rgb, 6>>& sent) {
+          std::vector<std::array<rgb, 6>>* sent) {
   const cluster_tree& tree = solver.tree;
-  sent.resize(solver.buffers.bins.size());
+  if (sent) sent->resize(solver.buffers.bins.size());
   for (int level = int(tree.levels.size()) - 2; level >= 0; --level) {
     const std::size_t begin = std::size_t(tree.levels[level]), end = std::size_t(tree.levels[level + 1]);
     for_each_block(solver.params.parallel, end - begin, 4096, [&](std::size_t b, std::size_t e) {
@@ -72,18 +72,18 @@ void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vec
           sum += node_b[c] * tree.nodes[c].area;
         node_b[i] = node.area > 0.0 ? sum / node.area : rgb(0.0);
         const int slot = solver.cube_slot[i];
-        if (slot < 0) continue;
+        if (!sent || slot < 0) continue;
         std::array<rgb, 6> out{};
         for (int c = node.first_child; c < node.first_child + node.child_count; ++c) {
           const cluster_node& child = tree.nodes[c];
           if (const int child_slot = solver.cube_slot[c]; child_slot >= 0) {
-            for (int k = 0; k < 6; ++k) out[k] += sent[child_slot][k];
+            for (int k = 0; k < 6; ++k) out[k] += (*sent)[child_slot][k];
           } else {
             for (int k = 0; k < 3; ++k)
               out[2 * k + (child.normal[k] >= 0.0 ? 0 : 1)] += node_b[c] * (child.area * std::abs(child.normal[k]));
           }
         }
-        sent[slot] = out;
+        (*sent)[slot] = out;
       }
     });
   }
@@ -111,7 +111,7 @@ rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& no
 void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
   const cluster_tree& tree = solver.tree;
   hierarchical_solver::transport_buffers& buf = solver.buffers;
-  pull(solver, x, buf.node_b, buf.sent);
+  pull(solver, x, buf.node_b, &buf.sent);
   const std::size_t n = tree.nodes.size();
   for_each_block(solver.params.parallel, n, 1024, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -870,8 +870,7 @@ bool split_marked_elements(hierarchical_solver& solver) {
 void refine_links(hierarchical_solver& solver, double tolerance) {
   if (solver.tree.nodes.empty()) return;
   std::vector<rgb> node_b(solver.tree.nodes.size());
-  std::vector<std::array<rgb, 6>> sent;
-  pull(solver, solver.radiosity, node_b, sent);
+  pull(solver, solver.radiosity, node_b, nullptr);  // the oracle charges the mean
   tbb::enumerable_thread_specific<std::vector<hierarchy_link>> out;
   std::atomic<std::size_t> count{0};
   std::atomic<std::uint64_t> rays{0};
@@ -1056,8 +1055,8 @@ bool final_gather(hierarchical_solver& solver) {
   const patch_mesh& mesh = *solver.mesh;
   std::vector<rgb> node_b(tree.nodes.size()), node_e(tree.nodes.size());
   std::vector<std::array<rgb, 6>> sent_b, sent_e;
-  pull(solver, solver.radiosity, node_b, sent_b);
-  pull(solver, solver.emission, node_e, sent_e);
+  pull(solver, solver.radiosity, node_b, &sent_b);
+  pull(solver, solver.emission, node_e, &sent_e);
   const std::size_t n = mesh.element_count();
   solver.gathered.assign(n, rgb(0.0));
   solver.gathered_direct.assign(n, rgb(0.0));

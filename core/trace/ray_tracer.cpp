@@ -1,12 +1,14 @@
 #include "trace/ray_tracer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -155,17 +157,22 @@ class tracer {
     const std::size_t first_hit = c.hits ? c.hits->size() : 0;
     c.pixel = y * view_.width + x;
     // The samples of one pixel are coherent: their camera rays go in
-    // packets (docs/performance.md, "Ray core").
-    const std::vector<vec3> eyes(offsets.size(), view_.eye);
-    std::vector<vec3> directions(offsets.size());
-    std::vector<std::optional<ray_hit>> hits(offsets.size());
-    for (std::size_t i = 0; i < offsets.size(); ++i)
-      directions[i] = camera_.direction(x + offsets[i].x, y + offsets[i].y);
-    rays_.intersect_packets(eyes, directions, hits);
-    for (std::size_t i = 0; i < offsets.size(); ++i) {
-      ++c.primary;
-      sum += p_.method == integrator::path ? path(view_.eye, directions[i], hits[i], rng, c)
-                                           : whitted(directions[i], hits[i], 0, rgb(1.0), rng, c);
+    // packets of 8 (docs/performance.md, "Ray core").
+    constexpr std::size_t packet = 8;
+    std::array<vec3, packet> eyes, directions;
+    eyes.fill(view_.eye);
+    std::array<std::optional<ray_hit>, packet> hits;
+    for (std::size_t begin = 0; begin < offsets.size(); begin += packet) {
+      const std::size_t count = std::min(packet, offsets.size() - begin);
+      for (std::size_t i = 0; i < count; ++i)
+        directions[i] = camera_.direction(x + offsets[begin + i].x, y + offsets[begin + i].y);
+      rays_.intersect_packets(std::span(eyes.data(), count), std::span(directions.data(), count),
+                              std::span(hits.data(), count));
+      for (std::size_t i = 0; i < count; ++i) {
+        ++c.primary;
+        sum += p_.method == integrator::path ? path(view_.eye, directions[i], hits[i], rng, c)
+                                             : whitted(directions[i], hits[i], 0, rgb(1.0), rng, c);
+      }
     }
     if (c.hits)
       for (std::size_t i = first_hit; i < c.hits->size(); ++i) (*c.hits)[i].weight /= double(offsets.size());
