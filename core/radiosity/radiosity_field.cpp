@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "base/embree_device.h"
@@ -50,6 +51,23 @@ struct query {
   int element = -1;
   vec3 weights{0.0};
 };
+
+// A probe ray's context: Embree's, followed by the one surface (Embree
+// geometry) whose elements the probe may hit (RTCIntersectContext must
+// come first: Embree passes the context's address to the filter).
+struct probe_context {
+  RTCIntersectContext embree;
+  unsigned geometry;
+};
+static_assert(offsetof(probe_context, embree) == 0);
+
+// Rejects the probe's hits on other surfaces (a wall's neighbour at a
+// corner).
+void same_surface_only(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const probe_context*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] != 0 && RTCHitN_geomID(args->hit, args->N, i) != context->geometry) args->valid[i] = 0;
+}
 
 }  // namespace
 
@@ -121,6 +139,7 @@ radiosity_field::radiosity_field(const patch_mesh& mesh, std::span<const rgb> ra
         for (int c = 0; c < 3; ++c) v[9 * i + 3 * k + c] = float(p[c]);
         idx[3 * i + k] = unsigned(3 * i + k);
       }
+    rtcSetGeometryIntersectFilterFunction(g, same_surface_only);
     rtcCommitGeometry(g);
     const unsigned id = rtcAttachGeometry(state_->scene, g);
     rtcReleaseGeometry(g);
@@ -133,29 +152,66 @@ radiosity_field::radiosity_field(const patch_mesh& mesh, std::span<const rgb> ra
 
 radiosity_field::~radiosity_field() = default;
 
-diffuse_radiosity radiosity_field::at(int surface, const vec3& point) const {
+diffuse_radiosity radiosity_field::at(int surface, const vec3& point, const vec3& normal) const {
   if (surface < 0 || std::size_t(surface) >= state_->geometry_of_surface.size() ||
       state_->geometry_of_surface[surface] == RTC_INVALID_GEOMETRY_ID)
     return {};
-  query q{&mesh_, state_->elements_of.data(), state_->geometry_of_surface[surface], point};
-  // The hit lies on the surface, so the nearest element is within about
-  // an element's size (chord error on curved surfaces is far less).
-  RTCPointQuery pq;
-  pq.x = float(point.x);
-  pq.y = float(point.y);
-  pq.z = float(point.z);
-  pq.time = 0.0f;
-  pq.radius = float(2.0 * std::max(mesh_.max_edge, 1e-6 * mesh_.scene_diagonal));
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  rtcPointQuery(state_->scene, &pq, &context, closest_element, &q);
-  if (q.element < 0) return {};
-  const glm::ivec3 t = mesh_.elements[q.element];
+  const unsigned geometry = state_->geometry_of_surface[surface];
+  int element = -1;
+  vec3 weights(0.0);
+  // First a short probe ray along the normal through the point: on a flat
+  // surface it hits the element that holds the point, with its
+  // barycentric weights, at the cost of one ray (a closest-point query
+  // visits every element within its radius). The probe reaches as far as
+  // the tessellation's chord error on curved surfaces (an element's size
+  // bounds it).
+  const double reach = std::max(mesh_.max_edge, 1e-6 * mesh_.scene_diagonal);
+  const vec3 n = glm::normalize(normal);
+  const vec3 start = point + reach * n;
+  RTCRayHit probe;
+  probe.ray.org_x = float(start.x);
+  probe.ray.org_y = float(start.y);
+  probe.ray.org_z = float(start.z);
+  probe.ray.dir_x = float(-n.x);
+  probe.ray.dir_y = float(-n.y);
+  probe.ray.dir_z = float(-n.z);
+  probe.ray.tnear = 0.0f;
+  probe.ray.tfar = float(2.0 * reach);
+  probe.ray.time = 0.0f;
+  probe.ray.mask = ~0u;
+  probe.ray.id = 0;
+  probe.ray.flags = 0;
+  probe.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  probe_context context;
+  rtcInitIntersectContext(&context.embree);
+  context.geometry = geometry;
+  rtcIntersect1(state_->scene, &context.embree, &probe);
+  if (probe.hit.geomID == geometry) {
+    element = state_->elements_of[geometry][probe.hit.primID];
+    weights = vec3(1.0 - probe.hit.u - probe.hit.v, probe.hit.u, probe.hit.v);
+  } else {
+    // Off the tessellation (past its boundary, or in a crack): the
+    // nearest element of the surface.
+    query q{&mesh_, state_->elements_of.data(), geometry, point};
+    RTCPointQuery pq;
+    pq.x = float(point.x);
+    pq.y = float(point.y);
+    pq.z = float(point.z);
+    pq.time = 0.0f;
+    pq.radius = float(2.0 * reach);
+    RTCPointQueryContext point_context;
+    rtcInitPointQueryContext(&point_context);
+    rtcPointQuery(state_->scene, &pq, &point_context, closest_element, &q);
+    if (q.element < 0) return {};
+    element = q.element;
+    weights = q.weights;
+  }
+  const glm::ivec3 t = mesh_.elements[element];
   diffuse_radiosity out;
   for (int k = 0; k < 3; ++k) {
-    out.reflected += q.weights[k] * vertex_values_[t[k]].reflected;
-    out.indirect += q.weights[k] * vertex_values_[t[k]].indirect;
-    out.caustic += q.weights[k] * vertex_values_[t[k]].caustic;
+    out.reflected += weights[k] * vertex_values_[t[k]].reflected;
+    out.indirect += weights[k] * vertex_values_[t[k]].indirect;
+    out.caustic += weights[k] * vertex_values_[t[k]].caustic;
   }
   return out;
 }

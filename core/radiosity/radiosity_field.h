@@ -1,8 +1,9 @@
 // The radiosity solution as a function on the scene's surfaces, for the ray
 // tracer's second pass: the value at a point is interpolated from the
-// vertices of the nearest element of the same surface (an Embree closest-
-// point query), so exact spheres and quadrics, and surfaces traced through
-// a different tessellation, find their elements too.
+// vertices of the element of the same surface under it (a short probe ray
+// along the normal), or else of the nearest one (an Embree closest-point
+// query), so exact spheres and quadrics, and surfaces traced through a
+// different tessellation, find their elements too.
 #pragma once
 
 #include <memory>
@@ -33,9 +34,10 @@ class radiosity_field {
   radiosity_field(const radiosity_field&) = delete;
   radiosity_field& operator=(const radiosity_field&) = delete;
 
-  // The solution at `point` on `surface` (front side); zero where the
-  // surface has no elements.
-  diffuse_radiosity at(int surface, const vec3& point) const;
+  // The solution at `point` on `surface` (front side), whose normal there
+  // is `normal` (either way round, any length); zero where the surface has
+  // no elements.
+  diffuse_radiosity at(int surface, const vec3& point, const vec3& normal) const;
 
   const patch_mesh& mesh() const { return mesh_; }
 

@@ -118,7 +118,7 @@ double ward_weight(const irradiance_record& r, const vec3& p, const vec3& n) {
 
 irradiance_cache::irradiance_cache(double accuracy, double cell) : accuracy_(accuracy), cell_(cell) {}
 
-std::uint64_t irradiance_cache::key(long x, long y, long z) const {
+std::uint64_t irradiance_cache::key(long x, long y, long z) {
   constexpr std::uint64_t mask = (1ull << 21) - 1;
   return (std::uint64_t(x) & mask) << 42 | (std::uint64_t(y) & mask) << 21 | (std::uint64_t(z) & mask);
 }
@@ -129,30 +129,42 @@ void irradiance_cache::add(const irradiance_record& r) {
   // Into every cell the record may serve at the largest reach: weight over
   // 1 / (a reach) needs |p - p_i| < a reach R_i.
   const double reach = accuracy_ * max_reach * r.radius;
-  const vec3 lo = (r.position - vec3(reach)) / cell_, hi = (r.position + vec3(reach)) / cell_;
+  std::size_t level = 0;
+  double cell = cell_;
+  while (cell < 2.0 * reach && level < 40) {
+    cell *= 2.0;
+    ++level;
+  }
+  if (levels_.size() <= level) levels_.resize(level + 1);
+  const vec3 lo = (r.position - vec3(reach)) / cell, hi = (r.position + vec3(reach)) / cell;
   for (long x = long(std::floor(lo.x)); x <= long(std::floor(hi.x)); ++x)
     for (long y = long(std::floor(lo.y)); y <= long(std::floor(hi.y)); ++y)
-      for (long z = long(std::floor(lo.z)); z <= long(std::floor(hi.z)); ++z) grid_[key(x, y, z)].push_back(index);
+      for (long z = long(std::floor(lo.z)); z <= long(std::floor(hi.z)); ++z)
+        levels_[level][key(x, y, z)].push_back(index);
 }
 
 std::optional<rgb> irradiance_cache::lookup(const vec3& p, const vec3& n, double reach) const {
-  const auto it =
-      grid_.find(key(long(std::floor(p.x / cell_)), long(std::floor(p.y / cell_)), long(std::floor(p.z / cell_))));
-  if (it == grid_.end()) return std::nullopt;
   const double threshold = 1.0 / (accuracy_ * reach);
   rgb sum(0.0);
   double weights = 0.0;
-  for (const std::uint32_t i : it->second) {
-    const irradiance_record& r = records_[i];
-    const double w = ward_weight(r, p, n);
-    if (!(w > threshold)) continue;
-    if (!std::isfinite(w)) return r.irradiance;  // on the record itself
-    const vec3 turn = glm::cross(r.normal, n), move = p - r.position;
-    rgb e = r.irradiance;
-    for (int ch = 0; ch < 3; ++ch)
-      e[ch] += glm::dot(turn, r.rotation[std::size_t(ch)]) + glm::dot(move, r.translation[std::size_t(ch)]);
-    sum += w * glm::max(e, rgb(0.0));
-    weights += w;
+  double cell = cell_;
+  for (const grid& level : levels_) {
+    const auto it =
+        level.find(key(long(std::floor(p.x / cell)), long(std::floor(p.y / cell)), long(std::floor(p.z / cell))));
+    cell *= 2.0;
+    if (it == level.end()) continue;
+    for (const std::uint32_t i : it->second) {
+      const irradiance_record& r = records_[i];
+      const double w = ward_weight(r, p, n);
+      if (!(w > threshold)) continue;
+      if (!std::isfinite(w)) return r.irradiance;  // on the record itself
+      const vec3 turn = glm::cross(r.normal, n), move = p - r.position;
+      rgb e = r.irradiance;
+      for (int ch = 0; ch < 3; ++ch)
+        e[ch] += glm::dot(turn, r.rotation[std::size_t(ch)]) + glm::dot(move, r.translation[std::size_t(ch)]);
+      sum += w * glm::max(e, rgb(0.0));
+      weights += w;
+    }
   }
   if (weights <= 0.0) return std::nullopt;
   return sum / weights;

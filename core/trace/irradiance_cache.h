@@ -56,8 +56,8 @@ double ward_weight(const irradiance_record& r, const vec3& p, const vec3& n);
 class irradiance_cache {
  public:
   // `accuracy` is Ward's a: a record serves points where its weight is
-  // over 1 / a. `cell` is the lookup grid's cell size (any positive
-  // value; about a tenth of a typical record's reach is best).
+  // over 1 / a. `cell` is the finest lookup grid's cell size (any
+  // positive value; about the smallest record's reach is best).
   irradiance_cache(double accuracy, double cell);
 
   void add(const irradiance_record& r);  // not thread-safe; lookups are
@@ -74,10 +74,13 @@ class irradiance_cache {
   static constexpr double max_reach = 2.0;
 
  private:
-  std::uint64_t key(long x, long y, long z) const;
+  using grid = std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>;  // cell -> records reaching into it
+  static std::uint64_t key(long x, long y, long z);
   double accuracy_, cell_;
   std::vector<irradiance_record> records_;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;  // cell -> records reaching into it
+  // Grids of cells cell_ * 2^k: a record goes into the finest whose cells are at least twice its reach, so it lands in
+  // at most eight cells however large it is (Ward's octree, flattened).
+  std::vector<grid> levels_;
 };
 
 }  // namespace bounce

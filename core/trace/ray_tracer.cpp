@@ -323,7 +323,7 @@ class tracer {
       }
       if (diffuse) {
         if (solution) {
-          const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point);
+          const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point, sp.n_face);
           const rgb reflected = p_.diffuse == diffuse_source::radiosity ? b.reflected : b.indirect;
           radiance += reflected * sp.texture_detail / pi;
         } else {
@@ -369,7 +369,7 @@ class tracer {
       if (sp.front && positive(sp.mat->ke) && !rays_.is_sampled_emitter(sp.hit.surface))
         out.radiance += throughput * sp.mat->ke;
       if (positive(sp.rho)) {
-        const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point);
+        const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point, sp.n_face);
         if (depth > 0 && caustics_ && sp.front) {
           // Seen through a mirror or a lens, a small patch of surface
           // fills much of the hemisphere, so the detail of the caustic on

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "base/random_stream.h"
 #include "image/image_metrics.h"
 #include "measure/closed_forms.h"
 #include "mesh_builders.h"
@@ -125,6 +126,45 @@ TEST(IrradianceCache, WardsWeightDecidesWhichRecordsServe) {
   EXPECT_FALSE(cache.lookup(vec3(0.05, 0, 0), vec3(1, 0, 0)));
   EXPECT_FALSE(cache.lookup(vec3(0.05, -0.1, 0), vec3(0, 1, 0)));
   EXPECT_TRUE(cache.lookup(vec3(0.05, 0.1, 0), vec3(0, 1, 0)));  // above them: fine
+}
+
+TEST(IrradianceCache, LookupFindsRecordsOfEverySizeAsASearchOfAllWould) {
+  // Records from 1/100 to 10 of the finest cell's size, scattered on a
+  // plane: the levelled grid returns what Ward's test over every record
+  // returns, at each reach.
+  const double accuracy = 0.3;
+  irradiance_cache cache(accuracy, 0.1);
+  random_stream rng(5, 0, 0);
+  for (int i = 0; i < 400; ++i) {
+    irradiance_record r;
+    r.position = vec3(4.0 * rng.uniform(), 0.0, 4.0 * rng.uniform());
+    r.normal = vec3(0, 1, 0);
+    r.radius = 0.001 * std::pow(1e4, rng.uniform());
+    r.irradiance = rgb(1.0 + i);
+    cache.add(r);
+  }
+  int found = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 p(4.0 * rng.uniform(), 0.0, 4.0 * rng.uniform());
+    const vec3 n(0, 1, 0);
+    for (const double reach : {1.0, irradiance_cache::max_reach}) {
+      rgb sum(0.0);
+      double weights = 0.0;
+      for (const irradiance_record& r : cache.records()) {
+        const double w = ward_weight(r, p, n);
+        if (w > 1.0 / (accuracy * reach)) {
+          sum += w * r.irradiance;
+          weights += w;
+        }
+      }
+      const std::optional<rgb> e = cache.lookup(p, n, reach);
+      ASSERT_EQ(e.has_value(), weights > 0.0) << i;
+      if (!e) continue;
+      ++found;
+      EXPECT_NEAR(e->r, sum.r / weights, 1e-9 * e->r) << i;
+    }
+  }
+  EXPECT_GT(found, 500);  // the test looks at records, not at empty space
 }
 
 TEST(ProgressivePhotons, RadiusShrinksByKnausZwicker) {

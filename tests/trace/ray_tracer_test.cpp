@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "base/random_stream.h"
 #include "image/image_metrics.h"
 #include "mesh_builders.h"
 #include "radiosity/radiosity.h"
@@ -23,6 +24,7 @@ using std::numbers::pi;
 using testing::add_closed_box;
 using testing::add_material;
 using testing::add_polygon;
+using testing::mesh_of;
 using testing::source_path;
 
 scene load(const std::string& relative) {
@@ -344,11 +346,35 @@ TEST(TwoPass, FieldInterpolatesVertexValuesOnExactSpheres) {
   for (int i = 0; i < 200; ++i) {
     const double phi = i * 2.399963, y = 1 - 2 * (i + 0.5) / 200, r = std::sqrt(1 - y * y);
     const vec3 p(r * std::cos(phi), y, r * std::sin(phi));
-    const diffuse_radiosity b = field.at(0, p);
+    const diffuse_radiosity b = field.at(0, p, p);
     EXPECT_NEAR(b.reflected.r, y + 2.0, 0.02) << i;  // linear in y up to the chord's sag
     EXPECT_EQ(b.indirect, b.reflected);
   }
-  EXPECT_EQ(field.at(5, vec3(0.0)).reflected, rgb(0.0));  // no such surface
+  EXPECT_EQ(field.at(5, vec3(0.0), vec3(0, 1, 0)).reflected, rgb(0.0));  // no such surface
+}
+
+TEST(TwoPass, FieldOnAFloorIsExactInsideAndTheNearestEdgeOutside) {
+  // The inside of a closed box: on its floor the probe along the normal
+  // finds the element under the point (a wall meets the floor at every
+  // edge, and its elements must not be taken), and a point past the
+  // floor's edge takes the edge's value from the nearest element.
+  scene s;
+  add_closed_box(s, vec3(0.0), vec3(1.0), add_material(s, rgb(0.5)));
+  const patch_mesh mesh = mesh_of(s, 0.2);
+  std::vector<rgb> radiosity(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    radiosity[v] = rgb(mesh.positions[v].x + 2.0 * mesh.positions[v].z + 10.0 * mesh.positions[v].y);
+  const radiosity_field field(mesh, radiosity, {});
+  const int floor = 4;  // {4, 5, 1, 0}: y = 0, facing up
+  const vec3 up(0, 1, 0);
+  random_stream rng(3, 0, 0);
+  for (int i = 0; i < 500; ++i) {
+    const vec3 p(rng.uniform(), 0.0, rng.uniform());
+    EXPECT_NEAR(field.at(floor, p, up).reflected.r, p.x + 2.0 * p.z, 1e-6) << i;
+    EXPECT_NEAR(field.at(floor, p, -up).reflected.r, p.x + 2.0 * p.z, 1e-6) << i;  // either way round
+  }
+  EXPECT_NEAR(field.at(floor, vec3(1.05, 0.0, 0.5), up).reflected.r, 2.0, 1e-6);  // past x = 1: the edge's value
+  EXPECT_NEAR(field.at(floor, vec3(0.3, 0.01, 0.0), up).reflected.r, 0.3, 1e-6);  // just above the edge at z = 0
 }
 
 // ---- path tracer ----
