@@ -50,6 +50,40 @@ rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
   return sum;
 }
 
+// The disc estimate of the form factor from a point p to node s: a disc
+// of s's projected area towards p, at its centroid, facing p: F = A /
+// (pi r^2 + A), finite as r goes to 0. Times the cosine at p when the
+// point has a normal n (a cluster receiver has none: per unit area facing
+// the source). `towards` is set to the unit direction from p to s.
+double disc_factor(const cluster_node& s, const vec3& p, const vec3* n, vec3& towards) {
+  const vec3 d = s.centroid - p;
+  const double r2 = glm::dot(d, d);
+  towards = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
+  const double receive = n ? std::max(0.0, glm::dot(*n, towards)) : 1.0;
+  const double send = projected_area(s, -towards);
+  return std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
+}
+
+// The form factor from a point p (normal n) to inner node s, from its
+// sample_strata elements (drawn by area): each element's exact factor
+// (Lambert's formula) stands for its share of the node's area. The disc
+// estimate misses by the second order of the source's angular size, and
+// always the same way in a box (its sums of form factors came out 1.3%
+// short at the default tolerance, and that much light was missing at
+// every bounce); this estimate's sums are within 0.3% of 1.
+double strata_factor(const cluster_tree& tree, const patch_mesh& mesh, int s, const vec3& p, const vec3& n) {
+  constexpr int strata = cluster_tree::sample_strata;
+  const double share = tree.nodes[std::size_t(s)].area / strata;
+  double sum = 0.0;
+  for (const int element : tree.strata[std::size_t(s)]) {
+    const glm::ivec3 t = mesh.elements[std::size_t(element)];
+    const vec3 polygon[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+    if (glm::dot(mesh.element_normals[std::size_t(element)], p - polygon[0]) <= 0.0) continue;  // faces away
+    sum += point_polygon_form_factor(p, n, polygon) * share / mesh.element_areas[std::size_t(element)];
+  }
+  return std::min(1.0, sum);
+}
+
 // Pull: element radiosities up the tree as area-weighted means, level by
 // level; and for clusters, what their elements send towards each of the
 // six axis directions (sum of B x area x max(0, +-n_k)), the radiosity
@@ -266,15 +300,10 @@ link_estimate estimate(const hierarchical_solver& solver, int i, int j) {
     e.none = !(e.factor > 0.0);
     return e;
   }
-  const vec3 d = s.centroid - r.centroid;
-  const double r2 = glm::dot(d, d);
+  vec3 towards;
+  e.factor = disc_factor(s, r.centroid, r.oriented ? &r.normal : nullptr, towards);
+  const double r2 = glm::dot(s.centroid - r.centroid, s.centroid - r.centroid);
   const double distance = std::sqrt(r2);
-  const vec3 dir = distance > 0.0 ? d / distance : vec3(0.0);
-  const double receive = r.oriented ? std::max(0.0, glm::dot(r.normal, dir)) : 1.0;
-  const double send = projected_area(s, -dir);
-  // A disc of projected area A facing the receiver on its axis at distance
-  // r: F = A / (pi r^2 + A), finite as r goes to 0.
-  e.factor = std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
   // Overlapping bounds: the estimate says nothing; charge the largest
   // factor. The centroids' cosines can be near 0 where parts of the two
   // still face each other: charge at least a tenth of the factor without them.
@@ -347,11 +376,8 @@ double factor_variation(const hierarchical_solver& solver, int i, int j) {
   }
   auto factor_at = [&](const vec3& p) {
     if (s.leaf()) return point_polygon_form_factor(p, r.normal, polygon);
-    const vec3 d = s.centroid - p;
-    const double r2 = glm::dot(d, d);
-    const vec3 dir = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
-    const double send = projected_area(s, -dir);
-    return std::min(1.0, std::max(0.0, glm::dot(r.normal, dir)) * send / (std::numbers::pi * r2 + send));
+    vec3 towards;
+    return disc_factor(s, p, &r.normal, towards);
   };
   double lo = INFINITY, hi = -INFINITY;
   auto add = [&](const vec3& p) {
@@ -417,7 +443,11 @@ void refine_pair(refine_context& ctx, int i, int j) {
   // it may face each other, and a later refinement (with more light) splits it.
   if (!(e.factor > 0.0) && leaves) return;
   if (leaves) mark_split(ctx, i, j, e.factor, v);
-  ctx.out.local().push_back({i, j, float(e.factor), v});
+  // The oracle decides on the disc estimate; a kept link from an inner
+  // node to an oriented receiver carries the strata estimate.
+  const double factor =
+      !s.leaf() && r.oriented ? strata_factor(ctx.solver.tree, *ctx.solver.mesh, j, r.centroid, r.normal) : e.factor;
+  ctx.out.local().push_back({i, j, float(factor), v});
   if (ctx.count.fetch_add(1, std::memory_order_relaxed) + 1 >= ctx.solver.params.max_links)
     ctx.limit_hit.store(true, std::memory_order_relaxed);
 }
@@ -1057,6 +1087,23 @@ bool final_gather(hierarchical_solver& solver) {
   std::vector<std::array<rgb, 6>> sent_b, sent_e;
   pull(solver, solver.radiosity, node_b, &sent_b);
   pull(solver, solver.emission, node_e, &sent_e);
+  // Per link from an inner node: its strata estimate over the disc
+  // estimate at its receiver's centre. Each element takes the disc
+  // estimate at itself times that: the correction is the source's shape,
+  // which changes slowly over a receiver that the oracle kept small
+  // against the distance.
+  std::vector<float> correction(solver.links.size(), 1.0f);
+  for_each_block(solver.params.parallel, solver.links.size(), 4096, [&](std::size_t b, std::size_t end) {
+    for (std::size_t l = b; l < end; ++l) {
+      const hierarchy_link& link = solver.links[l];
+      const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
+      const cluster_node& s = tree.nodes[std::size_t(link.source)];
+      if (s.leaf() || !r.oriented) continue;
+      vec3 unused;
+      const double at_centre = disc_factor(s, r.centroid, &r.normal, unused);
+      if (at_centre > 0.0) correction[l] = float(double(link.factor) / at_centre);
+    }
+  });
   const std::size_t n = mesh.element_count();
   solver.gathered.assign(n, rgb(0.0));
   solver.gathered_direct.assign(n, rgb(0.0));
@@ -1078,11 +1125,11 @@ bool final_gather(hierarchical_solver& solver) {
             const vec3 polygon[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
             f = point_polygon_form_factor(leaf.centroid, leaf.normal, polygon);
           } else {
-            const vec3 d = s.centroid - leaf.centroid;
-            const double r2 = glm::dot(d, d);
-            dir = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
-            const double send = projected_area(s, -dir);
-            f = std::min(1.0, std::max(0.0, glm::dot(leaf.normal, dir)) * send / (std::numbers::pi * r2 + send));
+            // The disc estimate at the element, corrected as the link's
+            // strata estimate corrects it at its receiver's centre (the
+            // correction is the source's shape, which changes slowly over
+            // a receiver that the oracle kept small against the distance).
+            f = std::min(1.0, disc_factor(s, leaf.centroid, &leaf.normal, dir) * double(correction[l]));
           }
           f *= double(link.visibility);
           factors += f;
