@@ -46,23 +46,36 @@ class path_tracer {
   path_tracer(const scene& s, const form_factor_context& context) : s_(s), c_(context), mesh_(*context.mesh) {}
 
   // Follows a path that meets element e at barycentric b, going along d
-  // (unit) with `power`; `first`: e is the specular element it was sent to
-  // (its diffuse part has received from the source's form factors).
-  void follow(int e, vec3 b, vec3 d, rgb power, random_stream& rng, block_result& out) const {
+  // (unit) with `power`; e is the specular element it was sent to (its
+  // diffuse part has received from the source's form factors). A path
+  // sent to a planar mirror (`planar_first`) deposits nothing until it
+  // has left a specular surface that is not a planar mirror: before that,
+  // it is light the mirror images carry.
+  void follow(int e, vec3 b, vec3 d, rgb power, bool planar_first, random_stream& rng, block_result& out) const {
     specular_tally& tally = out.tally;
     const double far = 4.0 * std::max(mesh_.scene_diagonal, 1e-12);
+    bool counts = !planar_first;
     for (int events = 0;; ++events) {
       const glm::ivec3 t = mesh_.elements[std::size_t(e)];
       const vec3 point = b[0] * mesh_.positions[t[0]] + b[1] * mesh_.positions[t[1]] + b[2] * mesh_.positions[t[2]];
       const vec3 face = mesh_.element_normals[std::size_t(e)];
       const bool front = glm::dot(d, face) < 0.0;
-      if (events > 0 && front) {
+      const bool planar = c_.mirrors && c_.mirrors->element_mirror[std::size_t(e)];
+      if (!counts && !planar && events > 0) {
+        const material& here = s_.materials[std::size_t(mesh_.element_materials[std::size_t(e)])];
+        if (!positive(here.kr) && !positive(here.kt)) {  // diffuse, by planar mirrors alone
+          tally.imaged += power;
+          return;
+        }
+      }
+      if (events > 0 && front && counts) {
         const rgb rho = (mesh_.vertex_rho[t[0]] + mesh_.vertex_rho[t[1]] + mesh_.vertex_rho[t[2]]) / 3.0;
         if (positive(rho)) {
           out.deposits.push_back({e, b, power});
           tally.deposited += power;
         }
       }
+      if (!planar) counts = true;
       const material& m = s_.materials[std::size_t(mesh_.element_materials[std::size_t(e)])];
       vec3 normal = b[0] * mesh_.normals[t[0]] + b[1] * mesh_.normals[t[1]] + b[2] * mesh_.normals[t[2]];
       normal = glm::length(normal) > 0.0 ? glm::normalize(normal) : face;
@@ -137,10 +150,9 @@ std::shared_ptr<const specular_surfaces> find_specular_surfaces(const scene& s, 
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const material& m = s.materials[std::size_t(mesh.element_materials[e])];
     if (!positive(m.kr) && !positive(m.kt)) continue;
-    if (mirrors && mirrors->element_mirror[e]) continue;
-    out->elements.push_back(int(e));
+    (mirrors && mirrors->element_mirror[e] ? out->planar_mirror_elements : out->elements).push_back(int(e));
   }
-  if (out->elements.empty()) return nullptr;
+  if (out->elements.empty()) return nullptr;  // planar mirrors alone: the images carry all
   return out;
 }
 
@@ -150,23 +162,26 @@ void add(specular_tally& to, const specular_tally& from) {
   to.stopped += from.stopped;
   to.escaped += from.escaped;
   to.truncated += from.truncated;
+  to.imaged += from.imaged;
   to.reweighted += from.reweighted;
   to.paths += from.paths;
 }
 
-std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& context,
-                                   const specular_surfaces& surfaces, const specular_source& source, std::uint64_t seed,
-                                   std::vector<rgb>& irradiance, specular_tally& tally) {
+namespace {
+
+// `count` paths from the source toward `targets`, chosen in proportion to
+// what they receive; their deposits go to `irradiance`.
+std::uint64_t send_paths(const scene& s, const form_factor_context& context, const std::vector<int>& targets,
+                         bool planar_first, const specular_source& source, std::uint64_t seed, int count,
+                         std::vector<rgb>& irradiance, specular_tally& tally) {
   const patch_mesh& mesh = *context.mesh;
-  const int count = context.params.specular_paths;
-  if (count <= 0) return 0;
+  if (count <= 0 || targets.empty()) return 0;
   const shooter* from = source.from;
   const double tolerance = 1e-9 * mesh.scene_diagonal;
   const vec3 centre = from ? (from->corners[0] + from->corners[1] + from->corners[2]) / 3.0 : source.position;
 
   // How much each specular element receives, roughly: the choice of
   // targets. Elements wholly behind a shooter get nothing, exactly.
-  const std::vector<int>& targets = surfaces.elements;
   std::vector<double> weight(targets.size(), 0.0);
   std::vector<std::uint8_t> reachable(targets.size(), 0);
   double largest = 0.0;
@@ -254,7 +269,7 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
         if (hit.triangle != e) continue;
         ++out.tally.paths;
         out.tally.sent += power;
-        tracer.follow(e, b, d, power, rng, out);
+        tracer.follow(e, b, d, power, planar_first, rng, out);
       }
     }
   });
@@ -270,6 +285,21 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
     add(tally, r.tally);
     rays += r.rays;
   }
+  return rays;
+}
+
+}  // namespace
+
+std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& context,
+                                   const specular_surfaces& surfaces, const specular_source& source, std::uint64_t seed,
+                                   std::vector<rgb>& irradiance, specular_tally& tally) {
+  const int count = context.params.specular_paths;
+  std::uint64_t rays = send_paths(s, context, surfaces.elements, false, source, seed, count, irradiance, tally);
+  // Half as many by way of the planar mirrors: most of them reach a
+  // diffuse surface straight from the mirror and end there at no cost
+  // but their two rays.
+  rays +=
+      send_paths(s, context, surfaces.planar_mirror_elements, true, source, ~seed, (count + 1) / 2, irradiance, tally);
   return rays;
 }
 

@@ -34,9 +34,14 @@ namespace bounce {
 struct mirror_set;
 
 // The elements paths are sent toward: specular (kr or kt > 0) and not part
-// of a planar mirror. Null when there are none.
+// of a planar mirror. Null when there are none. Chains that begin at a
+// planar mirror and go on to one of those (a lamp seen in a wall mirror by
+// a mirror ball) are neither the mirror images' (planar mirrors alone) nor
+// the direct paths': paths are also sent toward the planar mirrors'
+// elements, and deposit only after their first event off a planar mirror.
 struct specular_surfaces {
   std::vector<int> elements;
+  std::vector<int> planar_mirror_elements;  // empty without planar mirrors
 };
 std::shared_ptr<const specular_surfaces> find_specular_surfaces(const scene& s, const patch_mesh& mesh,
                                                                 const mirror_set* mirrors);
@@ -45,14 +50,15 @@ std::shared_ptr<const specular_surfaces> find_specular_surfaces(const scene& s, 
 bool has_specular_materials(const scene& s);
 
 // Where the power sent into specular paths went, per channel. Every path
-// ends once: sent + reweighted = stopped + escaped + truncated, where a
+// ends once: sent + reweighted = stopped + escaped + truncated + imaged, where a
 // path's deposits on diffuse surfaces (deposited) do not end it.
 struct specular_tally {
-  rgb sent{0.0};        // arriving at the specular elements from the sources
-  rgb deposited{0.0};   // arriving at diffuse surfaces after one or more specular events
-  rgb stopped{0.0};     // not reflected or transmitted specularly any further (roulette)
-  rgb escaped{0.0};     // left the scene
-  rgb truncated{0.0};   // still going after the maximum of specular events
+  rgb sent{0.0};       // arriving at the specular elements from the sources
+  rgb deposited{0.0};  // arriving at diffuse surfaces after one or more specular events
+  rgb stopped{0.0};    // not reflected or transmitted specularly any further (roulette)
+  rgb escaped{0.0};    // left the scene
+  rgb truncated{0.0};  // still going after the maximum of specular events
+  rgb imaged{0.0};     // sent to a planar mirror, reached a diffuse surface by planar mirrors alone (the images' light)
   rgb reweighted{0.0};  // gained or lost by roulette on coloured weights (zero for grey ones)
   std::uint64_t paths = 0;
 };
