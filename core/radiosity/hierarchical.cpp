@@ -54,23 +54,31 @@ rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
 // of s's projected area towards p, at its centroid, facing p: F = A /
 // (pi r^2 + A), finite as r goes to 0. Times the cosine at p when the
 // point has a normal n (a cluster receiver has none: per unit area facing
-// the source). `towards` is set to the unit direction from p to s.
-double disc_factor(const cluster_node& s, const vec3& p, const vec3* n, vec3& towards) {
+// the source). `towards` is set to the unit direction from p to s, and
+// `send` to s's projected area towards p.
+double disc_factor(const cluster_node& s, const vec3& p, const vec3* n, vec3& towards, double& send) {
   const vec3 d = s.centroid - p;
   const double r2 = glm::dot(d, d);
   towards = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
   const double receive = n ? std::max(0.0, glm::dot(*n, towards)) : 1.0;
-  const double send = projected_area(s, -towards);
+  send = projected_area(s, -towards);
   return std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
+}
+
+double disc_factor(const cluster_node& s, const vec3& p, const vec3* n) {
+  vec3 towards;
+  double send = 0.0;
+  return disc_factor(s, p, n, towards, send);
 }
 
 // The form factor from a point p (normal n) to inner node s, from its
 // sample_strata elements (drawn by area): each element's exact factor
 // (Lambert's formula) stands for its share of the node's area. The disc
 // estimate misses by the second order of the source's angular size, and
-// always the same way in a box (its sums of form factors came out 1.3%
-// short at the default tolerance, and that much light was missing at
-// every bounce); this estimate's sums are within 0.3% of 1.
+// in a box nearly always the same way: in a closed Cornell box at the
+// default tolerance its sums of form factors came out 0.8-2.5% short per
+// surface, and that much light was missing at every bounce; with this
+// estimate they are within 0.2% of 1 on the walls and 1.1% on the blocks.
 double strata_factor(const cluster_tree& tree, const patch_mesh& mesh, int s, const vec3& p, const vec3& n) {
   constexpr int strata = cluster_tree::sample_strata;
   const double share = tree.nodes[std::size_t(s)].area / strata;
@@ -78,8 +86,19 @@ double strata_factor(const cluster_tree& tree, const patch_mesh& mesh, int s, co
   for (const int element : tree.strata[std::size_t(s)]) {
     const glm::ivec3 t = mesh.elements[std::size_t(element)];
     const vec3 polygon[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
-    if (glm::dot(mesh.element_normals[std::size_t(element)], p - polygon[0]) <= 0.0) continue;  // faces away
-    sum += point_polygon_form_factor(p, n, polygon) * share / mesh.element_areas[std::size_t(element)];
+    const vec3& normal = mesh.element_normals[std::size_t(element)];
+    if (glm::dot(normal, p - polygon[0]) <= 0.0) continue;  // faces away
+    const double area = mesh.element_areas[std::size_t(element)];
+    const vec3 d = (polygon[0] + polygon[1] + polygon[2]) / 3.0 - p;
+    const double r2 = glm::dot(d, d);
+    if (area < 0.01 * std::numbers::pi * r2) {
+      // Small as seen from p: the point-to-point kernel at its centre is
+      // Lambert's formula to well under 1%, at a tenth of the cost.
+      const double cosines = std::max(0.0, glm::dot(n, d)) * std::max(0.0, -glm::dot(normal, d)) / r2;
+      sum += cosines / (std::numbers::pi * r2) * share;
+    } else {
+      sum += point_polygon_form_factor(p, n, polygon) * share / area;
+    }
   }
   return std::min(1.0, sum);
 }
@@ -129,15 +148,20 @@ void pull(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vec
 // below. Its area-weighted mean radiosity, which counts them all alike,
 // made every cluster link carry the wrong mix, and in a room lit from
 // above the ceiling came out 9% dark at the default tolerance.
+// `area` is the source's projected area along d (projected_area).
 rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& node_b,
-                   const std::vector<std::array<rgb, 6>>& sent, int source, const vec3& d) {
+                   const std::vector<std::array<rgb, 6>>& sent, int source, const vec3& d, double area) {
   const int slot = solver.cube_slot[std::size_t(source)];
-  if (slot < 0) return node_b[std::size_t(source)];
-  const double area = projected_area(solver.tree.nodes[std::size_t(source)], d);
-  if (!(area > 0.0)) return node_b[std::size_t(source)];
+  if (slot < 0 || !(area > 0.0)) return node_b[std::size_t(source)];
   rgb sum(0.0);
   for (int k = 0; k < 3; ++k) sum += std::abs(d[k]) * sent[std::size_t(slot)][2 * k + (d[k] >= 0.0 ? 0 : 1)];
   return sum / area;
+}
+
+rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& node_b,
+                   const std::vector<std::array<rgb, 6>>& sent, int source, const vec3& d) {
+  if (solver.cube_slot[std::size_t(source)] < 0) return node_b[std::size_t(source)];
+  return sent_radiosity(solver, node_b, sent, source, d, projected_area(solver.tree.nodes[std::size_t(source)], d));
 }
 
 // Gather over the links into their receivers, then push the irradiance
@@ -300,8 +324,7 @@ link_estimate estimate(const hierarchical_solver& solver, int i, int j) {
     e.none = !(e.factor > 0.0);
     return e;
   }
-  vec3 towards;
-  e.factor = disc_factor(s, r.centroid, r.oriented ? &r.normal : nullptr, towards);
+  e.factor = disc_factor(s, r.centroid, r.oriented ? &r.normal : nullptr);
   const double r2 = glm::dot(s.centroid - r.centroid, s.centroid - r.centroid);
   const double distance = std::sqrt(r2);
   // Overlapping bounds: the estimate says nothing; charge the largest
@@ -376,8 +399,7 @@ double factor_variation(const hierarchical_solver& solver, int i, int j) {
   }
   auto factor_at = [&](const vec3& p) {
     if (s.leaf()) return point_polygon_form_factor(p, r.normal, polygon);
-    vec3 towards;
-    return disc_factor(s, p, &r.normal, towards);
+    return disc_factor(s, p, &r.normal);
   };
   double lo = INFINITY, hi = -INFINITY;
   auto add = [&](const vec3& p) {
@@ -1099,8 +1121,7 @@ bool final_gather(hierarchical_solver& solver) {
       const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
       const cluster_node& s = tree.nodes[std::size_t(link.source)];
       if (s.leaf() || !r.oriented) continue;
-      vec3 unused;
-      const double at_centre = disc_factor(s, r.centroid, &r.normal, unused);
+      const double at_centre = disc_factor(s, r.centroid, &r.normal);
       if (at_centre > 0.0) correction[l] = float(double(link.factor) / at_centre);
     }
   });
@@ -1118,7 +1139,8 @@ bool final_gather(hierarchical_solver& solver) {
         for (std::size_t l = solver.link_offsets[a]; l < solver.link_offsets[a + 1]; ++l) {
           const hierarchy_link& link = solver.links[l];
           const cluster_node& s = tree.nodes[link.source];
-          double f = 0.0;
+          ++count;
+          double f = 0.0, send = 0.0;
           vec3 dir(0.0);
           if (s.leaf()) {
             const glm::ivec3 t = mesh.elements[s.element];
@@ -1129,13 +1151,13 @@ bool final_gather(hierarchical_solver& solver) {
             // strata estimate corrects it at its receiver's centre (the
             // correction is the source's shape, which changes slowly over
             // a receiver that the oracle kept small against the distance).
-            f = std::min(1.0, disc_factor(s, leaf.centroid, &leaf.normal, dir) * double(correction[l]));
+            f = std::min(1.0, disc_factor(s, leaf.centroid, &leaf.normal, dir, send) * double(correction[l]));
           }
           f *= double(link.visibility);
+          if (!(f > 0.0)) continue;
           factors += f;
-          sum += f * sent_radiosity(solver, node_b, sent_b, link.source, -dir);
-          direct += f * sent_radiosity(solver, node_e, sent_e, link.source, -dir);
-          ++count;
+          sum += f * sent_radiosity(solver, node_b, sent_b, link.source, -dir, send);
+          direct += f * sent_radiosity(solver, node_e, sent_e, link.source, -dir, send);
         }
       }
       const double scale = solver.progress.closed && factors > 0.0 ? 1.0 / factors : 1.0;

@@ -61,7 +61,7 @@ class path_tracer {
       const vec3 face = mesh_.element_normals[std::size_t(e)];
       const bool front = glm::dot(d, face) < 0.0;
       const bool planar = c_.mirrors && c_.mirrors->element_mirror[std::size_t(e)];
-      if (!counts && !planar && events > 0) {
+      if (!counts && !planar && events > 0 && front) {
         const material& here = s_.materials[std::size_t(mesh_.element_materials[std::size_t(e)])];
         if (!positive(here.kr) && !positive(here.kt)) {  // diffuse, by planar mirrors alone
           tally.imaged += power;
