@@ -466,9 +466,12 @@ void refine_pair(refine_context& ctx, int i, int j) {
   if (!(e.factor > 0.0) && leaves) return;
   if (leaves) mark_split(ctx, i, j, e.factor, v);
   // The oracle decides on the disc estimate; a kept link from an inner
-  // node to an oriented receiver carries the strata estimate.
-  const double factor =
-      !s.leaf() && r.oriented ? strata_factor(ctx.solver.tree, *ctx.solver.mesh, j, r.centroid, r.normal) : e.factor;
+  // node to an oriented receiver carries the strata estimate, except in a
+  // closed scene, whose normaliser already takes out the disc estimate's
+  // shortfall (docs/hierarchical.md, "What a kept link carries").
+  const double factor = !s.leaf() && r.oriented && !ctx.solver.progress.closed
+                            ? strata_factor(ctx.solver.tree, *ctx.solver.mesh, j, r.centroid, r.normal)
+                            : e.factor;
   ctx.out.local().push_back({i, j, float(factor), v});
   if (ctx.count.fetch_add(1, std::memory_order_relaxed) + 1 >= ctx.solver.params.max_links)
     ctx.limit_hit.store(true, std::memory_order_relaxed);
@@ -1115,16 +1118,17 @@ bool final_gather(hierarchical_solver& solver) {
   // which changes slowly over a receiver that the oracle kept small
   // against the distance.
   std::vector<float> correction(solver.links.size(), 1.0f);
-  for_each_block(solver.params.parallel, solver.links.size(), 4096, [&](std::size_t b, std::size_t end) {
-    for (std::size_t l = b; l < end; ++l) {
-      const hierarchy_link& link = solver.links[l];
-      const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
-      const cluster_node& s = tree.nodes[std::size_t(link.source)];
-      if (s.leaf() || !r.oriented) continue;
-      const double at_centre = disc_factor(s, r.centroid, &r.normal);
-      if (at_centre > 0.0) correction[l] = float(double(link.factor) / at_centre);
-    }
-  });
+  if (!solver.progress.closed)  // closed scenes' links carry the disc estimate itself
+    for_each_block(solver.params.parallel, solver.links.size(), 4096, [&](std::size_t b, std::size_t end) {
+      for (std::size_t l = b; l < end; ++l) {
+        const hierarchy_link& link = solver.links[l];
+        const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
+        const cluster_node& s = tree.nodes[std::size_t(link.source)];
+        if (s.leaf() || !r.oriented) continue;
+        const double at_centre = disc_factor(s, r.centroid, &r.normal);
+        if (at_centre > 0.0) correction[l] = float(double(link.factor) / at_centre);
+      }
+    });
   const std::size_t n = mesh.element_count();
   solver.gathered.assign(n, rgb(0.0));
   solver.gathered_direct.assign(n, rgb(0.0));
