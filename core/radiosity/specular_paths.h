@@ -73,8 +73,9 @@ struct specular_source {
   rgb intensity{0.0};
 };
 
-// Traces `context.params.specular_paths` paths from the source and adds
-// the irradiance they deposit to `irradiance` (per vertex of the
+// Traces `context.params.specular_paths` paths from the source toward the
+// surfaces' elements, and half as many toward their planar mirrors' (if
+// any), and adds the irradiance they deposit to `irradiance` (per vertex of the
 // context's mesh). `seed` makes the paths (different shots: different
 // seeds); the result does not depend on the threads. Returns the rays cast.
 std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& context,
