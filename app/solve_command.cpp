@@ -88,6 +88,9 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
         double(h.links.size() * sizeof(hierarchy_link)) / (1 << 20), h.progress.tolerance,
         static_cast<unsigned long long>(st.rays), h.tree.nodes.size(),
         h.progress.closed ? ", closed scene: form factors normalised" : "");
+    if (!h.mirror_links.empty())
+      say("links through planar mirrors: %zu (%.1f MiB) over %zu mirror chains\n", h.mirror_links.size(),
+          double(h.mirror_links.size() * sizeof(mirror_link)) / (1 << 20), h.chains.size());
     if (!h.progress.warning.empty()) std::fprintf(stderr, "warning: %s\n", h.progress.warning.c_str());
   } else {
     say("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",

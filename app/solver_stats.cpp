@@ -55,6 +55,9 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
     const hierarchical_solver& h = *state.hierarchy;
     out["hierarchical"] = {{"links", h.links.size()},
                            {"link_bytes", h.links.size() * sizeof(hierarchy_link)},
+                           // Links through chains of planar mirrors (not in "links").
+                           {"mirror_links", h.mirror_links.size()},
+                           {"mirror_chains", h.chains.size()},
                            {"link_tolerance", h.progress.tolerance},
                            {"links_final", h.progress.links_final},
                            {"refinements", h.progress.refinements},

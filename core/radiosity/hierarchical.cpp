@@ -164,12 +164,34 @@ rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& no
   return sent_radiosity(solver, node_b, sent, source, d, projected_area(solver.tree.nodes[std::size_t(source)], d));
 }
 
-// Gather over the links into their receivers, then push the irradiance
-// down to the elements: out[e] = irradiance on element e.
-void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
+// What one link brings its receiver: the source's radiosity towards the
+// receiver (or its image's, through a mirror chain) times the factor and
+// visibility, and the unit direction from the receiver to the source (or
+// image), for cluster receivers' bins. False: no direction.
+bool link_value(const hierarchical_solver& solver, const cluster_node& node, const hierarchy_link& link,
+                const mirror_chain* chain, rgb& value, vec3& d) {
+  const hierarchical_solver::transport_buffers& buf = solver.buffers;
+  const cluster_node& source = solver.tree.nodes[std::size_t(link.source)];
+  const vec3 at = chain ? chain->image(source.centroid) : source.centroid;
+  const vec3 towards = at - node.centroid;
+  const double length = glm::length(towards);
+  if (!(length > 0.0)) return false;  // no direction (and its estimate is 0)
+  d = towards / length;
+  const vec3 out = chain ? chain->source_direction(-d) : -d;
+  value =
+      double(link.factor) * double(link.visibility) * sent_radiosity(solver, buf.node_b, buf.sent, link.source, out);
+  if (chain) value *= chain->path.kr;
+  return true;
+}
+
+// Gather over one set of links (plain, or through mirrors) into their
+// receivers, then push the irradiance down to the elements: out[e] =
+// irradiance on element e. The pull is made beforehand.
+template <typename link_of>
+void gather_links(const hierarchical_solver& solver, const std::vector<std::size_t>& offsets, link_of&& at,
+                  std::vector<rgb>& out) {
   const cluster_tree& tree = solver.tree;
   hierarchical_solver::transport_buffers& buf = solver.buffers;
-  pull(solver, x, buf.node_b, &buf.sent);
   const std::size_t n = tree.nodes.size();
   for_each_block(solver.params.parallel, n, 1024, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -177,19 +199,16 @@ void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, s
       const int slot = solver.cube_slot[i];
       rgb sum(0.0);
       std::array<rgb, 6> bins{};
-      for (std::size_t l = solver.link_offsets[i]; l < solver.link_offsets[i + 1]; ++l) {
-        const hierarchy_link& link = solver.links[l];
-        const bool cluster_source = solver.cube_slot[link.source] >= 0;
-        if (slot < 0 && !cluster_source) {
+      for (std::size_t l = offsets[i]; l < offsets[i + 1]; ++l) {
+        const mirror_chain* chain = nullptr;
+        const hierarchy_link& link = at(l, chain);
+        if (!chain && slot < 0 && solver.cube_slot[link.source] < 0) {
           sum += double(link.factor) * double(link.visibility) * buf.node_b[link.source];
           continue;
         }
-        const vec3 towards = tree.nodes[link.source].centroid - node.centroid;
-        const double length = glm::length(towards);
-        if (!(length > 0.0)) continue;  // no direction (and its estimate is 0)
-        const vec3 d = towards / length;
-        const rgb value = double(link.factor) * double(link.visibility) *
-                          sent_radiosity(solver, buf.node_b, buf.sent, link.source, -d);
+        rgb value;
+        vec3 d;
+        if (!link_value(solver, node, link, chain, value, d)) continue;
         if (slot < 0) {
           sum += value;
           continue;
@@ -226,6 +245,32 @@ void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, s
   // A single-element mesh: the root is the leaf, and oriented.
 }
 
+// Gather and push over the links: out[e] = irradiance on element e from
+// the plain links, and, when `mirrored` is given, mirrored[e] from the
+// links through mirrors (the form-factor normaliser applies to the first
+// alone: a mirror's solid angle is counted once, by the plain links to it).
+void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out,
+                 std::vector<rgb>* mirrored = nullptr) {
+  hierarchical_solver::transport_buffers& buf = solver.buffers;
+  pull(solver, x, buf.node_b, &buf.sent);
+  gather_links(
+      solver, solver.link_offsets,
+      [&](std::size_t l, const mirror_chain*&) -> const hierarchy_link& { return solver.links[l]; }, out);
+  if (!mirrored) return;
+  if (solver.mirror_links.empty()) {
+    mirrored->assign(out.size(), rgb(0.0));
+    return;
+  }
+  gather_links(
+      solver, solver.mirror_link_offsets,
+      [&](std::size_t l, const mirror_chain*& chain) -> const hierarchy_link& {
+        const mirror_link& m = solver.mirror_links[l];
+        chain = &solver.chains[std::size_t(m.chain)];
+        return m.link;
+      },
+      *mirrored);
+}
+
 // ---- link refinement ----
 
 struct link_estimate {
@@ -254,6 +299,7 @@ struct refine_context {
   std::atomic<std::uint64_t>& rays;
   std::atomic<bool>& limit_hit;
   tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>>& marks;  // (element, bisections)
+  tbb::enumerable_thread_specific<std::vector<mirror_link>>* mirror_out = nullptr;
 };
 
 double longest_edge(const patch_mesh& mesh, int element) {
@@ -477,6 +523,161 @@ void refine_pair(refine_context& ctx, int i, int j) {
     ctx.limit_hit.store(true, std::memory_order_relaxed);
 }
 
+// ---- links through mirror chains ----
+//
+// The same oracle on the source's image: a pair (receiver, source, chain)
+// is culled when the two cannot see each other through the chain's first
+// mirror (mirror_chains.h), estimated by the disc estimate to the image
+// (leaves: Lambert's formula on the reflected triangle) times kr, and
+// split on the larger side while it would carry more than the tolerance.
+// A pair that no ray passes is split, as a partly visible one is, while
+// it could carry enough to matter, and dropped after that: most pairs
+// through a mirror see it partly or not at all, and keeping those that
+// see nothing would cost memory for nothing.
+
+struct image_of_node {
+  vec3 centroid, normal, lo, hi;
+};
+
+image_of_node node_image(const cluster_node& s, const mirror_chain& chain) {
+  image_of_node out;
+  out.centroid = chain.image(s.centroid);
+  out.normal = chain.image_direction(s.normal);
+  image_box(chain, s.lo, s.hi, out.lo, out.hi);
+  return out;
+}
+
+// The disc estimate (disc_factor) to node s's image in a chain.
+double image_disc_factor(const cluster_node& s, const mirror_chain& chain, const vec3& p, const vec3* n) {
+  const vec3 d = chain.image(s.centroid) - p;
+  const double r2 = glm::dot(d, d);
+  const vec3 towards = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
+  const double receive = n ? std::max(0.0, glm::dot(*n, towards)) : 1.0;
+  const double send = projected_area(s, chain.source_direction(-towards));
+  return std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
+}
+
+bool reaches_in_front(const planar_mirror& m, const vec3& lo, const vec3& hi, double slack) {
+  double most = -INFINITY;
+  for (int k = 0; k < 8; ++k)
+    most = std::max(most, m.side(vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z)));
+  return most > slack;
+}
+
+link_estimate estimate_through(const hierarchical_solver& solver, int i, int j, const mirror_chain& chain) {
+  const cluster_node& r = solver.tree.nodes[std::size_t(i)];
+  const cluster_node& s = solver.tree.nodes[std::size_t(j)];
+  const mirror_set& mirrors = *solver.context.mirrors;
+  const planar_mirror& last = mirrors.mirrors[std::size_t(chain.path.mirrors[std::size_t(chain.path.count - 1)])];
+  link_estimate e;
+  e.none = true;
+  if (!reaches_in_front(last, s.lo, s.hi, mirrors.tolerance)) return e;
+  const image_of_node image = node_image(s, chain);
+  const double slack = 1e-9 * solver.mesh->scene_diagonal;
+  if ((r.oriented && behind(r.normal, image.lo, image.hi, r.lo, r.hi, slack)) ||
+      (s.oriented && behind(image.normal, r.lo, r.hi, image.lo, image.hi, slack)) ||
+      !may_cross_first_mirror(mirrors, chain, r.lo, r.hi, image.lo, image.hi))
+    return e;
+  e.none = false;
+  const vec3 d = image.centroid - r.centroid;
+  const double r2 = glm::dot(d, d);
+  if (r.leaf() && s.leaf()) {
+    const glm::ivec3 t = solver.mesh->elements[std::size_t(s.element)];
+    const vec3 polygon[3] = {chain.image(solver.mesh->positions[t[0]]), chain.image(solver.mesh->positions[t[1]]),
+                             chain.image(solver.mesh->positions[t[2]])};
+    e.factor = e.bound = point_polygon_form_factor(r.centroid, r.normal, polygon);
+    e.none = !(e.factor > 0.0);
+    return e;
+  }
+  e.factor = image_disc_factor(s, chain, r.centroid, r.oriented ? &r.normal : nullptr);
+  const bool close = std::sqrt(r2) < r.radius() + s.radius();
+  e.bound = close ? 1.0 : std::max(e.factor, 0.1 * s.area / (std::numbers::pi * r2 + s.area));
+  return e;
+}
+
+// The share of rays between sample points of the receiver and of the
+// source's image that pass the chain (weighted by the cosines at both
+// ends, as visibility() weights them).
+float visibility_through(refine_context& ctx, int i, int j, int c, int count) {
+  const hierarchical_solver& solver = ctx.solver;
+  const mirror_chain& chain = solver.chains[std::size_t(c)];
+  const cluster_node& r = solver.tree.nodes[std::size_t(i)];
+  const cluster_node& s = solver.tree.nodes[std::size_t(j)];
+  const std::uint64_t key_i = r.leaf() ? std::uint64_t(r.element) : (1ull << 40) + std::uint64_t(i);
+  const std::uint64_t key_j = s.leaf() ? std::uint64_t(s.element) : (1ull << 40) + std::uint64_t(j);
+  std::uint64_t state = mix(solver.params.seed ^ mix(key_i * 0x100000001b3ull ^ mix(key_j ^ mix(std::uint64_t(c)))));
+  double open = 0.0, total = 0.0;
+  int open_rays = 0;
+  for (int k = 0; k < count; ++k) {
+    const double u1 = (k + uniform(state)) / count, v1 = uniform(state);
+    const double u2 = (((k * 7 + 3) % count) + uniform(state)) / count, v2 = uniform(state);
+    const surface_point p = sample_node(solver.tree, *solver.mesh, i, u1, v1);
+    const surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
+    const vec3 q_position = chain.image(q.position), q_normal = chain.image_direction(q.normal);
+    const vec3 pq = q_position - p.position;
+    const double length = glm::length(pq);
+    const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, p.normal)) *
+                                             std::max(0.0, -glm::dot(pq, q_normal)) / (length * length)
+                                       : 0.0;
+    const vec3 from =
+        p.position + p.normal * (glm::dot(pq, p.normal) >= 0.0 ? solver.context.offset : -solver.context.offset);
+    const vec3 to =
+        q_position + q_normal * (glm::dot(pq, q_normal) <= 0.0 ? solver.context.offset : -solver.context.offset);
+    const bool passes = weight > 0.0 && visible_through_mirrors(solver.context, chain.path, from, to);
+    open_rays += passes ? 1 : 0;
+    total += weight;
+    open += passes ? weight : 0.0;
+  }
+  ctx.rays += std::uint64_t(count);
+  if (total > 0.0) return float(open / total);
+  return float(open_rays) / float(count);
+}
+
+void refine_pair_through(refine_context& ctx, int i, int j, int c);
+
+void split_pair_through(refine_context& ctx, int i, int j, int c) {
+  const cluster_node& r = ctx.solver.tree.nodes[std::size_t(i)];
+  const cluster_node& s = ctx.solver.tree.nodes[std::size_t(j)];
+  const bool split_receiver = !r.leaf() && (s.leaf() || r.area >= s.area);
+  const cluster_node& split = split_receiver ? r : s;
+  auto body = [&](int k) { split_receiver ? refine_pair_through(ctx, k, j, c) : refine_pair_through(ctx, i, k, c); };
+  if (ctx.solver.params.parallel && r.elements + s.elements > 4096) {
+    tbb::parallel_for(split.first_child, split.first_child + split.child_count, body);
+  } else {
+    for (int k = split.first_child; k < split.first_child + split.child_count; ++k) body(k);
+  }
+}
+
+// The oracle's charge for a pair through a chain: F x kr x B x A.
+double charge_through(const refine_context& ctx, int i, int j, int c, const link_estimate& e) {
+  const cluster_node& r = ctx.solver.tree.nodes[std::size_t(i)];
+  return e.bound * channel_max(ctx.solver.chains[std::size_t(c)].path.kr) * r.area *
+         channel_max(ctx.node_b[std::size_t(j)]);
+}
+
+void keep_link_through(refine_context& ctx, int i, int j, int c, double factor, float v) {
+  ctx.mirror_out->local().push_back({{i, j, float(factor), v}, c});
+  if (ctx.count.fetch_add(1, std::memory_order_relaxed) + 1 >= ctx.solver.params.max_links)
+    ctx.limit_hit.store(true, std::memory_order_relaxed);
+}
+
+void refine_pair_through(refine_context& ctx, int i, int j, int c) {
+  const link_estimate e = estimate_through(ctx.solver, i, j, ctx.solver.chains[std::size_t(c)]);
+  if (e.none) return;
+  const cluster_node& r = ctx.solver.tree.nodes[std::size_t(i)];
+  const cluster_node& s = ctx.solver.tree.nodes[std::size_t(j)];
+  const bool leaves = r.leaf() && s.leaf();
+  const bool splittable = !leaves && !ctx.limit_hit.load(std::memory_order_relaxed);
+  const double error = charge_through(ctx, i, j, c, e);
+  if (splittable && error > ctx.tolerance) return split_pair_through(ctx, i, j, c);
+  const int rays = leaves ? ctx.solver.params.leaf_visibility_rays : ctx.solver.params.visibility_rays;
+  const float v = visibility_through(ctx, i, j, c, rays);
+  if (splittable && v < 1.0f && ctx.solver.params.partial_factor * error > ctx.tolerance)
+    return split_pair_through(ctx, i, j, c);
+  if (v == 0.0f || !(e.factor > 0.0)) return;
+  keep_link_through(ctx, i, j, c, e.factor, v);
+}
+
 // A node with itself: its children with each other, and each with itself.
 // Oriented nodes do not see themselves.
 void refine_self(refine_context& ctx, int i) {
@@ -525,15 +726,23 @@ bool scene_is_closed(const hierarchical_solver& solver) {
   return !escaped;
 }
 
-// Sorts the links by receiver and indexes them.
+// Sorts the links (plain and through mirrors) by receiver and indexes them.
 void index_links(hierarchical_solver& solver) {
   tbb::parallel_sort(solver.links.begin(), solver.links.end(), [](const hierarchy_link& a, const hierarchy_link& b) {
     return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
   });
+  tbb::parallel_sort(solver.mirror_links.begin(), solver.mirror_links.end(),
+                     [](const mirror_link& a, const mirror_link& b) {
+                       if (a.link.receiver != b.link.receiver) return a.link.receiver < b.link.receiver;
+                       return a.chain != b.chain ? a.chain < b.chain : a.link.source < b.link.source;
+                     });
   const std::size_t n = solver.tree.nodes.size();
   solver.link_offsets.assign(n + 1, 0);
   for (const hierarchy_link& l : solver.links) ++solver.link_offsets[std::size_t(l.receiver) + 1];
   for (std::size_t i = 0; i < n; ++i) solver.link_offsets[i + 1] += solver.link_offsets[i];
+  solver.mirror_link_offsets.assign(n + 1, 0);
+  for (const mirror_link& l : solver.mirror_links) ++solver.mirror_link_offsets[std::size_t(l.link.receiver) + 1];
+  for (std::size_t i = 0; i < n; ++i) solver.mirror_link_offsets[i + 1] += solver.mirror_link_offsets[i];
 }
 
 void update_normalizer(hierarchical_solver& solver) {
@@ -591,7 +800,8 @@ std::vector<rgb> specular_lamp_of(const hierarchical_solver& solver, std::uint64
   const std::shared_ptr<const specular_surfaces> surfaces = path_targets(solver);
   if (!surfaces && !solver.context.mirrors) return {};
   const form_factor_context context = input_context(solver);
-  return vertex_to_element(*solver.input_mesh, specular_light_from_sources(s, context, surfaces.get(), rays));
+  return vertex_to_element(*solver.input_mesh,
+                           specular_light_from_sources(s, context, surfaces.get(), rays, solver.chains.empty()));
 }
 
 // The diffuse light that mirrors and glass pass on, per element of the
@@ -621,7 +831,8 @@ std::vector<rgb> passed_on_specular_light(hierarchical_solver& solver, std::uint
                        0xD1B54A32D192ED03ull;
   return vertex_to_element(
       input, specular_light_from_patches(*solver.source, context, surfaces.get(), reflected, seed, rays,
-                                         solver.progress.specular_ray_budget, &solver.progress.specular_shot_fraction));
+                                         solver.progress.specular_ray_budget, &solver.progress.specular_shot_fraction,
+                                         solver.chains.empty()));
 }
 
 // Sets the lamp's part by way of mirrors and glass to `per_input` (per
@@ -664,10 +875,15 @@ void update_residual(hierarchical_solver& solver) {
   solver.residual_fraction = solver.emitted_power > 0.0 ? total / solver.emitted_power : 0.0;
 }
 
+// The direct light (plain links from the emitters, and the point lights
+// straight), and the emitters' light through mirror links.
 void update_direct(hierarchical_solver& solver) {
-  apply_transport(solver, solver.emission, solver.direct);
+  gather_push(solver, solver.emission, solver.direct, &solver.mirrored);
   ++solver.progress.operator_applications;
-  for (std::size_t e = 0; e < solver.direct.size(); ++e) solver.direct[e] += direct_lamp(solver, e);
+  for (std::size_t e = 0; e < solver.direct.size(); ++e) {
+    solver.direct[e] = solver.rho[e] * (solver.direct[e] * solver.normalizer[e]) + direct_lamp(solver, e);
+    solver.mirrored[e] = solver.rho[e] * solver.mirrored[e];
+  }
 }
 
 }  // namespace
@@ -746,9 +962,12 @@ struct generic_product_impl<bounce::transport_system, rhs, SparseShape, DenseSha
 namespace bounce {
 
 void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out) {
-  gather_push(solver, x, out);
+  const bool mirrors = !solver.mirror_links.empty();
+  std::vector<rgb>& mirrored = solver.buffers.mirrored;
+  gather_push(solver, x, out, mirrors ? &mirrored : nullptr);
   for_each_block(solver.params.parallel, out.size(), 16384, [&](std::size_t b, std::size_t end) {
-    for (std::size_t e = b; e < end; ++e) out[e] = solver.rho[e] * (out[e] * solver.normalizer[e]);
+    for (std::size_t e = b; e < end; ++e)
+      out[e] = solver.rho[e] * (out[e] * solver.normalizer[e] + (mirrors ? mirrored[e] : rgb(0.0)));
   });
 }
 
@@ -771,6 +990,8 @@ void build_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
   solver.buffers.bins.resize(std::size_t(slots));
   solver.links.clear();
   solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
+  solver.mirror_links.clear();
+  solver.mirror_link_offsets.assign(solver.tree.nodes.size() + 1, 0);
   solver.split_marks.clear();
   solver.split_roots.clear();
 
@@ -816,6 +1037,9 @@ std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, co
   solver->context = context;
   solver->context.vertex_areas.clear();  // the solver works per element
   solver->min_edge = params.min_edge > 0.0 ? params.min_edge : mesh.max_edge / 8.0;
+  if (params.mirror_links && context.mirrors && context.params.specular_transfer)
+    solver->chains = mirror_chains(*context.mirrors, context.params.mirror_depth);
+  solver->has_path_targets = path_targets(*solver) != nullptr;
   solver->specular_lamp_input = specular_lamp_of(*solver, solver->progress.rays);
   solver->specular_lamp = solver->specular_lamp_input;
   solver->input_element.resize(mesh.element_count());
@@ -838,11 +1062,14 @@ void restart_hierarchical(hierarchical_solver& solver) {
   if (solver.progress.specular_passes > 0) set_specular_lamp(solver, solver.specular_lamp_input);
   solver.links.clear();
   solver.link_offsets.assign(solver.tree.nodes.size() + 1, 0);
+  solver.mirror_links.clear();
+  solver.mirror_link_offsets.assign(solver.tree.nodes.size() + 1, 0);
   solver.split_marks.clear();
   solver.normalizer.assign(solver.mesh->element_count(), 1.0);
   solver.radiosity = right_hand_side(solver);
   solver.direct.resize(solver.lamp.size());
   for (std::size_t e = 0; e < solver.lamp.size(); ++e) solver.direct[e] = direct_lamp(solver, e);
+  solver.mirrored.assign(solver.lamp.size(), rgb(0.0));
   solver.residual.assign(solver.radiosity.size(), rgb(0.0));
   solver.residual_fraction = 1.0;
   const std::uint64_t rays = solver.progress.rays;
@@ -859,7 +1086,9 @@ bool refinement_done(const hierarchical_solver& solver) {
 }
 
 bool specular_passes_done(const hierarchical_solver& solver) {
-  return solver.specular_lamp.empty() || solver.progress.specular_passes >= solver.params.specular_bounces;
+  // With links through mirrors, the passes have only paths to carry.
+  return solver.specular_lamp.empty() || solver.progress.specular_passes >= solver.params.specular_bounces ||
+         (!solver.chains.empty() && !solver.has_path_targets);
 }
 
 bool split_marked_elements(hierarchical_solver& solver) {
@@ -895,7 +1124,13 @@ bool split_marked_elements(hierarchical_solver& solver) {
     link.receiver = node_of_old[std::size_t(link.receiver)];
     link.source = node_of_old[std::size_t(link.source)];
   }
+  std::vector<mirror_link> mirror_links = std::move(solver.mirror_links);
+  for (mirror_link& m : mirror_links) {
+    m.link.receiver = node_of_old[std::size_t(m.link.receiver)];
+    m.link.source = node_of_old[std::size_t(m.link.source)];
+  }
   const std::vector<rgb> radiosity = std::move(solver.radiosity), direct = std::move(solver.direct);
+  const std::vector<rgb> mirrored = std::move(solver.mirrored);
   solver.refined_mesh = refined;
   solver.mesh = refined.get();
   if (!solver.specular_lamp.empty()) {
@@ -908,17 +1143,21 @@ bool split_marked_elements(hierarchical_solver& solver) {
   solver.input_element = std::move(input_element);
   build_for_mesh(solver, std::move(tree));
   solver.links = std::move(links);
+  solver.mirror_links = std::move(mirror_links);
   index_links(solver);
   const std::size_t m = solver.mesh->element_count();
   solver.radiosity.resize(m);
   solver.direct.resize(m);
+  solver.mirrored.resize(m);
   for (std::size_t e = 0; e < m; ++e) {
     solver.radiosity[e] = radiosity[std::size_t(from[e])];
     solver.direct[e] = direct[std::size_t(from[e])];
+    solver.mirrored[e] = mirrored[std::size_t(from[e])];
   }
   solver.residual.assign(m, rgb(0.0));
   solver.gathered.clear();
   solver.gathered_direct.clear();
+  solver.gathered_mirrored.clear();
   return true;
 }
 
@@ -969,10 +1208,20 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
       }
     });
   }
+  // Links through mirror chains: made afresh from the roots at every
+  // refinement (they are few, and a pair that no ray passed at a coarse
+  // tolerance may matter at a finer one).
+  tbb::enumerable_thread_specific<std::vector<mirror_link>> mirror_out;
+  ctx.mirror_out = &mirror_out;
+  for_each_block(solver.params.parallel, solver.chains.size(), 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t c = b; c < e; ++c) refine_pair_through(ctx, 0, 0, int(c));
+  });
   std::vector<hierarchy_link> links;
   links.reserve(count.load());
   for (auto& part : out) links.insert(links.end(), part.begin(), part.end());
   solver.links = std::move(links);
+  solver.mirror_links.clear();
+  for (auto& part : mirror_out) solver.mirror_links.insert(solver.mirror_links.end(), part.begin(), part.end());
   index_links(solver);
   solver.split_roots.clear();
   solver.split_marks.clear();
@@ -1098,7 +1347,9 @@ std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
   std::vector<std::uint64_t> chain(tree.nodes.size(), 0);
   std::uint64_t total = 0;
   for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
-    chain[i] = (solver.link_offsets[i + 1] - solver.link_offsets[i]) + (i > 0 ? chain[tree.nodes[i].parent] : 0);
+    chain[i] = (solver.link_offsets[i + 1] - solver.link_offsets[i]) +
+               (solver.mirror_link_offsets[i + 1] - solver.mirror_link_offsets[i]) +
+               (i > 0 ? chain[tree.nodes[i].parent] : 0);
     if (tree.nodes[i].leaf()) total += chain[i];
   }
   return total;
@@ -1132,6 +1383,7 @@ bool final_gather(hierarchical_solver& solver) {
   const std::size_t n = mesh.element_count();
   solver.gathered.assign(n, rgb(0.0));
   solver.gathered_direct.assign(n, rgb(0.0));
+  solver.gathered_mirrored.assign(n, rgb(0.0));
   std::atomic<std::uint64_t> evaluations{0};
   for_each_block(solver.params.parallel, n, 256, [&](std::size_t b, std::size_t end) {
     std::uint64_t count = 0;
@@ -1164,9 +1416,42 @@ bool final_gather(hierarchical_solver& solver) {
           direct += f * sent_radiosity(solver, node_e, sent_e, link.source, -dir, send);
         }
       }
+      // Through mirror chains: the kernel to the source's image at the
+      // element (leaves: Lambert's formula on the reflected triangle).
+      rgb mirrored(0.0), mirrored_direct(0.0);
+      for (int a = tree.leaf_of_element[e]; a >= 0; a = tree.nodes[a].parent) {
+        for (std::size_t l = solver.mirror_link_offsets[a]; l < solver.mirror_link_offsets[a + 1]; ++l) {
+          const mirror_link& m = solver.mirror_links[l];
+          const mirror_chain& chain = solver.chains[std::size_t(m.chain)];
+          const cluster_node& s = tree.nodes[m.link.source];
+          ++count;
+          const vec3 towards = chain.image(s.centroid) - leaf.centroid;
+          const double r2 = glm::dot(towards, towards);
+          if (!(r2 > 0.0)) continue;
+          const vec3 dir = towards / std::sqrt(r2);
+          const vec3 out = chain.source_direction(-dir);
+          const double send = projected_area(s, out);
+          double f = 0.0;
+          if (s.leaf()) {
+            const glm::ivec3 t = mesh.elements[s.element];
+            const vec3 polygon[3] = {chain.image(mesh.positions[t[0]]), chain.image(mesh.positions[t[1]]),
+                                     chain.image(mesh.positions[t[2]])};
+            f = point_polygon_form_factor(leaf.centroid, leaf.normal, polygon);
+          } else {
+            f = image_disc_factor(s, chain, leaf.centroid, &leaf.normal);
+          }
+          f *= double(m.link.visibility);
+          if (!(f > 0.0)) continue;
+          mirrored += f * chain.path.kr * sent_radiosity(solver, node_b, sent_b, m.link.source, out, send);
+          mirrored_direct += f * chain.path.kr * sent_radiosity(solver, node_e, sent_e, m.link.source, out, send);
+        }
+      }
+      // The normaliser is for the plain links alone: a mirror's solid
+      // angle is counted once, by the links to the mirror itself.
       const double scale = solver.progress.closed && factors > 0.0 ? 1.0 / factors : 1.0;
-      solver.gathered[e] = solver.rho[e] * (sum * scale);
+      solver.gathered[e] = solver.rho[e] * (sum * scale + mirrored);
       solver.gathered_direct[e] = solver.rho[e] * (direct * scale);
+      solver.gathered_mirrored[e] = solver.rho[e] * mirrored_direct;
     }
     evaluations += count;
   });

@@ -31,6 +31,12 @@
 // pieces; the links are then refined onto them. Elements are fine only
 // where some link needs them: at contacts, shadow edges and gradients.
 //
+// Planar mirrors: links also join pairs through chains of planar mirrors
+// (mirror_chains.h), refined by the same oracle on the source's image, so
+// light that mirrors pass on between diffuse surfaces (D S+ D) is part of
+// the operator. Curved mirrors and glass are carried by passes over the
+// patches (params.specular_bounces) and the right-hand side.
+//
 // Closed scenes: every element's form factors must sum to 1; the estimates
 // of coarse links do not quite, and at rho = 0.999 an error of 1e-4 in the
 // sum is 10% in B. Where the scene is closed (no sampled ray escapes it),
@@ -47,6 +53,7 @@
 #include "mesh/patch_mesh.h"
 #include "radiosity/cluster_tree.h"
 #include "radiosity/form_factor.h"
+#include "radiosity/mirror_chains.h"
 
 namespace bounce {
 
@@ -84,6 +91,10 @@ struct hierarchical_params {
   double min_marked_fraction = 1e-3;
   bool parallel = true;
   std::uint64_t seed = 1;
+  // Links through chains of planar mirrors (up to the form-factor
+  // params' mirror_depth). Off: the passes below carry that light too, by
+  // mirror images of every patch.
+  bool mirror_links = true;
   // Passes of diffuse light through mirrors and glass (D S+ D): once the
   // final links are solved, each patch's reflected light is sent through
   // them and added to the right-hand side; each pass starts from the
@@ -103,6 +114,14 @@ struct hierarchy_link {
   int source = -1;
   float factor = 0.0f;      // form factor (clusters: per unit area facing the source)
   float visibility = 1.0f;  // fraction of the shadow rays that pass
+};
+
+// A link through a chain of planar mirrors: the receiver sees the
+// source's image (solver.chains[chain]); factor is the form factor to the
+// image, visibility the share of rays that pass the chain.
+struct mirror_link {
+  hierarchy_link link;
+  int chain = -1;
 };
 
 struct hierarchy_progress {
@@ -136,6 +155,10 @@ struct hierarchical_solver {
   std::vector<hierarchy_link> links;      // sorted by receiver
   std::vector<std::size_t> link_offsets;  // per receiver node: its links are [offsets[i], offsets[i+1])
   std::vector<int> cube_slot;             // per node: its six-bin slot, or -1 for oriented nodes
+  std::vector<mirror_chain> chains;       // empty: no links through mirrors
+  std::vector<mirror_link> mirror_links;  // sorted by receiver
+  std::vector<std::size_t> mirror_link_offsets;
+  bool has_path_targets = false;  // curved mirrors or glass: the passes have paths to trace
   // Per element, the bisections the last link refinement asked for (empty: none).
   std::vector<std::uint8_t> split_marks;
   // Per node, after elements were split: 1 for the leaves that became the
@@ -149,6 +172,7 @@ struct hierarchical_solver {
     std::vector<rgb> gathered;             // oriented nodes: irradiance gathered by their own links, then pushed
     std::vector<std::array<rgb, 6>> bins;  // clusters: irradiance per unit area facing +x, -x, ...
     std::vector<std::array<rgb, 6>> sent;  // clusters: what their elements send towards +x, -x, ... (pull)
+    std::vector<rgb> mirrored;             // per element: irradiance through the mirror links
   };
   mutable transport_buffers buffers;
 
@@ -168,10 +192,11 @@ struct hierarchical_solver {
   std::vector<double> normalizer;  // 1 / form-factor sum in closed scenes, else 1
   std::vector<rgb> radiosity;      // B (the solution)
   std::vector<rgb> direct;         // the part of B received straight from emitters and point lights
+  std::vector<rgb> mirrored;       // the part received from emitters through mirror links (a caustic)
   std::vector<rgb> residual;       // E + lamp + K B - B
   // Final gather: each element's reflected light with the kernel evaluated
   // at the element itself over the links of it and its ancestors.
-  std::vector<rgb> gathered, gathered_direct;
+  std::vector<rgb> gathered, gathered_direct, gathered_mirrored;
 
   double emitted_power = 0.0;  // channel sum of the right-hand side x area
   double residual_fraction = 1.0;
@@ -220,8 +245,9 @@ bool split_marked_elements(hierarchical_solver& solver);
 // The operator: out = K x (x per element), K = reflect . push . gather . pull.
 void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out);
 
-// Final gather over the current solution (fills gathered and
-// gathered_direct): each element gathers over the links of itself and its
+// Final gather over the current solution (fills gathered,
+// gathered_direct and gathered_mirrored, the emitters' light through
+// mirror links): each element gathers over the links of itself and its
 // ancestors with the kernel evaluated at its own centre and normal. Costs
 // the sum over elements of those links; past params.gather_budget it is
 // not made and returns false.

@@ -241,8 +241,9 @@ void publish_hierarchical(radiosity_state& state) {
   // the links of it and its ancestors, the kernel evaluated at the element
   // itself. Before (or while passes of light through mirrors and glass
   // are still due), the element solution as it stands.
-  if (refinement_done(h) && specular_passes_done(h) && h.residual_fraction <= h.params.refine_below &&
-      final_gather(*state.hierarchy)) {
+  const bool gathered = refinement_done(h) && specular_passes_done(h) && h.residual_fraction <= h.params.refine_below &&
+                        final_gather(*state.hierarchy);
+  if (gathered) {
     std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
     for (std::size_t e = 0; e < b.size(); ++e) {
       b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
@@ -254,13 +255,17 @@ void publish_hierarchical(radiosity_state& state) {
     state.radiosity = element_to_vertex(mesh, h.radiosity);
     state.direct = element_to_vertex(mesh, h.direct);
   }
-  // The lights' light through mirrors and glass enters B as it is, a
-  // right-hand-side term: B's caustic part is that term.
+  // The lights' light through mirrors and glass enters B as a
+  // right-hand-side term, and through the links through mirrors: B's
+  // caustic part is that term plus what those links bring from the emitters.
   state.caustic.clear();
-  if (!h.specular_lamp_input.empty()) {
-    std::vector<rgb> caustic(mesh.element_count());
-    for (std::size_t e = 0; e < caustic.size(); ++e)
-      caustic[e] = h.specular_lamp_input[std::size_t(h.input_element[e])];
+  if (!h.specular_lamp_input.empty() || !h.mirror_links.empty()) {
+    const std::vector<rgb>& mirrored = gathered ? h.gathered_mirrored : h.mirrored;
+    std::vector<rgb> caustic(mesh.element_count(), rgb(0.0));
+    for (std::size_t e = 0; e < caustic.size(); ++e) {
+      if (!h.specular_lamp_input.empty()) caustic[e] = h.specular_lamp_input[std::size_t(h.input_element[e])];
+      if (e < mirrored.size()) caustic[e] += mirrored[e];
+    }
     state.caustic = element_to_vertex(mesh, caustic);
   }
   state.unshot = h.residual;

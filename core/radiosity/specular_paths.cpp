@@ -306,7 +306,7 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
 std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_context& context,
                                              const specular_surfaces* surfaces, const std::vector<rgb>& radiosity,
                                              std::uint64_t& seed, std::uint64_t& rays, std::uint64_t ray_budget,
-                                             double* shot_fraction) {
+                                             double* shot_fraction, bool images) {
   const patch_mesh& mesh = *context.mesh;
   std::vector<rgb> out(mesh.vertex_count(), rgb(0.0)), irradiance(mesh.vertex_count(), rgb(0.0));
   std::vector<double> f(mesh.vertex_count());
@@ -335,7 +335,7 @@ std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_c
     const rgb b = radiosity[std::size_t(p)];
     shot += power[std::size_t(p)];
     const shooter from = patch_shooter(mesh, p);
-    if (context.mirrors)
+    if (context.mirrors && images)
       for (const shooter& image : mirror_images(*context.mirrors, from, context.params.mirror_depth)) {
         rays += form_factors_by_rays(context, image, {}, f);
         for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
@@ -356,7 +356,8 @@ std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_c
 }
 
 std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
-                                             const specular_surfaces* surfaces, std::uint64_t& rays) {
+                                             const specular_surfaces* surfaces, std::uint64_t& rays,
+                                             bool patch_images) {
   const patch_mesh& mesh = *context.mesh;
   std::uint64_t seed = context.params.seed * 0x9E3779B97F4A7C15ull;
   // Emitting patches: their elements' area-weighted mean emission.
@@ -368,7 +369,8 @@ std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_c
   }
   for (std::size_t p = 0; p < mesh.patch_count(); ++p)
     emission[p] = mesh.patch_areas[p] > 0.0 ? emission[p] / mesh.patch_areas[p] : rgb(0.0);
-  std::vector<rgb> out = specular_light_from_patches(s, context, surfaces, emission, seed, rays);
+  std::vector<rgb> out =
+      specular_light_from_patches(s, context, surfaces, emission, seed, rays, 0, nullptr, patch_images);
   std::vector<rgb> irradiance(mesh.vertex_count(), rgb(0.0));
   specular_tally tally;
   for (const point_light& light : s.lights)

@@ -88,10 +88,13 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
 // lights, and the specular paths of both, as reflected radiosity per
 // vertex. What the hierarchical solver adds to its right-hand side (its
 // links carry no light through mirrors). `surfaces` may be null (no
-// paths); the context's mirrors may be null (no images). Adds the rays
-// cast to `rays`.
+// paths); the context's mirrors may be null (no images). Without
+// `patch_images`, the emitting patches' mirror images are left out (the
+// hierarchical solver's links through mirrors carry them); the point
+// lights' are kept. Adds the rays cast to `rays`.
 std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
-                                             const specular_surfaces* surfaces, std::uint64_t& rays);
+                                             const specular_surfaces* surfaces, std::uint64_t& rays,
+                                             bool patch_images = true);
 
 // The same from patches of the context's mesh, each radiating uniformly
 // with `radiosity[patch]` (zero: skipped), without the point lights: what
@@ -100,10 +103,10 @@ std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_c
 // With a `ray_budget`, the patches go most powerful first and stop once
 // the budget is spent; those shot then stand in for the rest (their light
 // scaled by all the patches' power over theirs, which `shot_fraction`
-// gets when given).
+// gets when given). Without `images`, the paths alone.
 std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_context& context,
                                              const specular_surfaces* surfaces, const std::vector<rgb>& radiosity,
                                              std::uint64_t& seed, std::uint64_t& rays, std::uint64_t ray_budget = 0,
-                                             double* shot_fraction = nullptr);
+                                             double* shot_fraction = nullptr, bool images = true);
 
 }  // namespace bounce

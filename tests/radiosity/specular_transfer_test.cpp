@@ -2,6 +2,7 @@
 // (mirror_images.h, specular_paths.h; docs/radiosity.md, "Light through
 // mirrors and glass"): exact against Lambert's formula on mirror images,
 // to Monte Carlo noise through a glass slab, and the power books.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -11,7 +12,9 @@
 #include "measure/closed_forms.h"
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
+#include "radiosity/cluster_tree.h"
 #include "radiosity/form_factor.h"
+#include "radiosity/hierarchical.h"
 #include "radiosity/mirror_images.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/specular_paths.h"
@@ -157,21 +160,84 @@ TEST(SpecularTransfer, RefinedVerticesGatherThroughTheMirrorImages) {
   EXPECT_LE(balance_error(state->balance), 1e-9);
 }
 
-TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors) {
-  // The hierarchical solver adds what the emitters send by way of mirrors
-  // and glass to its right-hand side (per element: the mean of its
-  // vertices'), so the floor of the mirror-ceiling scene gets the same
-  // image light, piecewise constant.
+radiosity_params hierarchical(bool mirror_links, int specular_bounces) {
+  radiosity_params params;
+  params.method = solver_method::hierarchical;
+  params.hierarchical.mirror_links = mirror_links;
+  params.hierarchical.specular_bounces = specular_bounces;
+  return params;
+}
+
+void solve(radiosity_state& state, int steps = 200) {
+  for (int i = 0; i < steps && step_radiosity(state); ++i) {
+  }
+}
+
+TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmittersImage) {
+  // The hierarchical solver's links through the mirror ceiling carry the
+  // emitter's light to the floor as its image's: what those links bring
+  // from the emitters (gathered_mirrored, the caustic part of the
+  // solution) against Lambert's formula on the image, at each floor
+  // element's centre, where the final gather evaluates it.
   const double kr = 0.9;
   const scene s = mirror_ceiling_scene(kr);
   const patch_mesh mesh = mesh_of(s, 0.125);
-  radiosity_params params;
-  params.method = solver_method::hierarchical;
-  params.hierarchical.specular_bounces = 0;  // the floor's own light back by the mirror: the test below
-  auto state = make_radiosity_state(s, mesh, params);
-  for (int i = 0; i < 100 && step_radiosity(*state); ++i) {
-  }
+  const vec3 image[4] = {{-0.1, 3.0, -0.1}, {0.1, 3.0, -0.1}, {0.1, 3.0, 0.1}, {-0.1, 3.0, 0.1}};
+  struct result {
+    double worst = 0.0, total = 0.0;
+  };
+  auto solve_at = [&](double tolerance) {
+    radiosity_params params = hierarchical(true, 2);
+    params.hierarchical.tolerance = tolerance;
+    auto state = make_radiosity_state(s, mesh, params);
+    solve(*state);
+    const hierarchical_solver& h = *state->hierarchy;
+    EXPECT_EQ(h.chains.size(), 1u);
+    EXPECT_GT(h.mirror_links.size(), 100u);
+    EXPECT_EQ(h.progress.specular_passes, 0);  // a planar mirror alone: nothing left for the passes
+    EXPECT_EQ(h.gathered_mirrored.size(), mesh.element_count());
+    EXPECT_EQ(state->caustic.size(), mesh.vertex_count());
+    result out;
+    double sum = 0.0, expected_sum = 0.0;
+    for (std::size_t e = 0; e < h.gathered_mirrored.size(); ++e) {
+      const cluster_node& leaf = h.tree.nodes[std::size_t(h.tree.leaf_of_element[e])];
+      const double r = std::max(std::abs(leaf.centroid.x), std::abs(leaf.centroid.z));
+      if (leaf.centroid.y > 1e-9 || r > 1.5 || r < 0.4) continue;  // the floor, off its edge and the lamp's shadow
+      const double expected = 0.5 * pi * kr * point_polygon_form_factor(leaf.centroid, leaf.normal, image);
+      out.worst = std::max(out.worst, std::abs(h.gathered_mirrored[e].g / expected - 1.0));
+      sum += h.gathered_mirrored[e].g;
+      expected_sum += expected;
+    }
+    out.total = sum / expected_sum;
+    std::printf("tolerance %g: %zu links through the mirror, floor total %.5f of exact, worst element %.4f off\n",
+                tolerance, h.mirror_links.size(), out.total, out.worst);
+    return out;
+  };
+  // Fine links: every element's light from the lamp's elements by Lambert's formula.
+  const result fine = solve_at(3e-6);
+  EXPECT_LT(fine.worst, 1e-3);
+  EXPECT_NEAR(fine.total, 1.0, 1e-3);
+  // The default tolerance: links from nodes that hold lamp and floor
+  // elements alike (all face up) carry their mean radiosity at their
+  // centre's image, up to 15% off per element here; the total holds.
+  const result coarse = solve_at(1e-5);
+  EXPECT_LT(coarse.worst, 0.2);
+  EXPECT_NEAR(coarse.total, 1.0, 0.01);
+}
+
+TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors) {
+  // Without links through mirrors, the solver adds what the emitters send
+  // by way of mirrors and glass to its right-hand side (per element: the
+  // mean of its vertices'), so the floor of the mirror-ceiling scene gets
+  // the same image light, piecewise constant.
+  const double kr = 0.9;
+  const scene s = mirror_ceiling_scene(kr);
+  const patch_mesh mesh = mesh_of(s, 0.125);
+  // No passes: the floor's own light back by the mirror is the test below.
+  auto state = make_radiosity_state(s, mesh, hierarchical(false, 0));
+  solve(*state, 100);
   ASSERT_FALSE(state->hierarchy->specular_lamp.empty());
+  EXPECT_TRUE(state->hierarchy->mirror_links.empty());
   double sum = 0.0, expected_sum = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const vec3 p = mesh.receive_points[v];
@@ -205,8 +271,9 @@ double floor_mean(const patch_mesh& mesh, const std::vector<rgb>& radiosity) {
 TEST(SpecularTransfer, HierarchicalSolverPassesDiffuseLightOnThroughMirrors) {
   // The mirror ceiling also shows the floor its own light (D S D): the
   // progressive solver carries it with every shot of the floor's
-  // elements, and the hierarchical one with its passes of the patches'
-  // reflected light through the mirror (params.specular_bounces).
+  // elements, and the hierarchical one with its links through the mirror,
+  // or, without them, with its passes of the patches' reflected light
+  // through the mirror (params.specular_bounces).
   const scene s = mirror_ceiling_scene(0.9);
   const patch_mesh mesh = mesh_of(s, 0.25);
   auto reference = make_radiosity_state(s, mesh, progressive());
@@ -216,21 +283,19 @@ TEST(SpecularTransfer, HierarchicalSolverPassesDiffuseLightOnThroughMirrors) {
   ASSERT_LE(reference->stats.unshot_fraction, 1e-3);
   const double expected = floor_mean(mesh, reference->radiosity);
 
-  auto solve = [&](int bounces) {
-    radiosity_params params;
-    params.method = solver_method::hierarchical;
-    params.hierarchical.specular_bounces = bounces;
-    auto state = make_radiosity_state(s, mesh, params);
-    for (int i = 0; i < 200 && step_radiosity(*state); ++i) {
-    }
-    EXPECT_EQ(state->hierarchy->progress.specular_passes, bounces);
+  auto solve_with = [&](bool links, int bounces) {
+    auto state = make_radiosity_state(s, mesh, hierarchical(links, bounces));
+    solve(*state);
+    EXPECT_EQ(state->hierarchy->progress.specular_passes, links ? 0 : bounces);
+    EXPECT_EQ(state->hierarchy->mirror_links.empty(), !links);
     return floor_mean(mesh, state->radiosity);
   };
-  const double without = solve(0), with = solve(3);
-  std::printf("floor mean: progressive %.5f, hierarchical %.5f (%.5f without passing diffuse light on)\n", expected,
-              with, without);
+  const double without = solve_with(false, 0), passes = solve_with(false, 3), links = solve_with(true, 3);
+  std::printf("floor mean: progressive %.5f, hierarchical %.5f by links, %.5f by passes (%.5f without either)\n",
+              expected, links, passes, without);
   EXPECT_LT(without, 0.92 * expected);  // what was left out is worth testing
-  EXPECT_NEAR(with, expected, 0.02 * expected);
+  EXPECT_NEAR(passes, expected, 0.02 * expected);
+  EXPECT_NEAR(links, expected, 0.02 * expected);
 }
 
 TEST(SpecularTransfer, PatchesOverTheRayBudgetAreStoodInForByTheBrightest) {
@@ -316,6 +381,22 @@ TEST(SpecularTransfer, TwoMirrorsLightTheFloorByTheImageOfTheImage) {
     ++checked;
   }
   EXPECT_GT(checked, 10);
+
+  // The hierarchical solver's links through the chain of both mirrors:
+  // the caustic part of its solution, per element, on the floor's middle.
+  auto h = make_radiosity_state(scope.s, mesh, hierarchical(true, 2));
+  solve(*h);
+  double sum = 0.0, expected_sum = 0.0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const vec3 p = mesh.receive_points[v];
+    if (!is_floor_vertex(mesh, v) || std::abs(p.x - 4.0) > 0.4 || std::abs(p.z) > 0.4) continue;
+    const double expected =
+        0.5 * pi * scope.kr1 * scope.kr2 * point_polygon_form_factor(p, vec3(0, 1, 0), std::span(image));
+    EXPECT_NEAR(h->caustic[v].g, expected, 0.05 * expected) << "at " << p.x << ", " << p.z;
+    sum += h->caustic[v].g;
+    expected_sum += expected;
+  }
+  EXPECT_NEAR(sum / expected_sum, 1.0, 0.02);
 
   // One reflection is not enough: at depth 1 the floor stays dark.
   radiosity_params shallow = progressive();
