@@ -318,21 +318,24 @@ double longest_edge(const patch_mesh& mesh, int element) {
 // centre, times the source's radiosity and the element's area), or, on a
 // shadow edge (partly visible), the whole transfer. The bisections asked
 // for halve that error enough (each halves the area, and the variation
-// with it).
-void mark_split(refine_context& ctx, int i, int j, double factor, float visibility) {
+// with it). Through a mirror chain, the same with the source's image and kr.
+void mark_split(refine_context& ctx, int i, int j, double factor, float visibility,
+                const mirror_chain* chain = nullptr) {
   const hierarchical_solver& solver = ctx.solver;
   if (!solver.params.split_elements) return;
   const cluster_node& r = solver.tree.nodes[i];
   const cluster_node& s = solver.tree.nodes[j];
   const patch_mesh& mesh = *solver.mesh;
-  const double transfer = r.area * channel_max(ctx.node_b[j]);
+  const double transfer = r.area * channel_max(ctx.node_b[j]) * (chain ? channel_max(chain->path.kr) : 1.0);
   if (!(factor * transfer > ctx.tolerance)) return;  // nothing this pair carries can matter
   double error = 0.0;
   if (visibility > 0.0f && visibility < 1.0f) {
     error = solver.params.partial_factor * factor * transfer;
   } else if (visibility > 0.0f) {
     const glm::ivec3 st = mesh.elements[s.element];
-    const vec3 polygon[3] = {mesh.positions[st[0]], mesh.positions[st[1]], mesh.positions[st[2]]};
+    vec3 polygon[3] = {mesh.positions[st[0]], mesh.positions[st[1]], mesh.positions[st[2]]};
+    if (chain)
+      for (vec3& x : polygon) x = chain->image(x);
     const glm::ivec3 rt = mesh.elements[r.element];
     double lo = factor, hi = factor;
     for (int k = 0; k < 3; ++k) {
@@ -675,6 +678,7 @@ void refine_pair_through(refine_context& ctx, int i, int j, int c) {
   if (splittable && v < 1.0f && ctx.solver.params.partial_factor * error > ctx.tolerance)
     return split_pair_through(ctx, i, j, c);
   if (v == 0.0f || !(e.factor > 0.0)) return;
+  if (leaves) mark_split(ctx, i, j, e.factor, v, &ctx.solver.chains[std::size_t(c)]);
   keep_link_through(ctx, i, j, c, e.factor, v);
 }
 

@@ -225,6 +225,42 @@ TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmitters
   EXPECT_NEAR(coarse.total, 1.0, 0.01);
 }
 
+TEST(SpecularTransfer, LinksThroughAMirrorSplitTheElementsWhereItsLightChanges) {
+  // Under the mirror ceiling the lamp hides its own image from the floor
+  // right below it: a shadow of radius 0.1 whose penumbra reaches 0.2
+  // (the image is at height 3, the lamp at 1, both 0.2 wide). The light
+  // there comes through the mirror alone, so only links through the
+  // mirror can ask for the elements to be split.
+  const scene s = mirror_ceiling_scene(0.9);
+  const patch_mesh mesh = mesh_of(s, 0.25);
+  auto mean_area = [](const patch_mesh& m, double lo, double hi) {
+    double area = 0.0;
+    int count = 0;
+    for (std::size_t e = 0; e < m.element_count(); ++e) {
+      const glm::ivec3 t = m.elements[e];
+      const vec3 c = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0;
+      const double r = std::hypot(c.x, c.z);
+      if (std::abs(c.y) > 1e-9 || r < lo || r > hi) continue;
+      area += m.element_areas[e];
+      ++count;
+    }
+    return count ? area / count : 0.0;
+  };
+  auto solve_split = [&](bool links) {
+    radiosity_params params = hierarchical(links, 2);
+    params.hierarchical.split_elements = true;
+    auto state = make_radiosity_state(s, mesh, params);
+    solve(*state);
+    const patch_mesh& solved = *state->hierarchy->mesh;
+    const double penumbra = mean_area(solved, 0.1, 0.2), open = mean_area(solved, 1.0, 1.5);
+    std::printf("%s: %zu elements, mean floor element in the penumbra %.5f, on open floor %.5f\n",
+                links ? "links through the mirror" : "mirror images", solved.element_count(), penumbra, open);
+    return penumbra / open;
+  };
+  EXPECT_LT(solve_split(true), 0.25);
+  EXPECT_GT(solve_split(false), 0.5);  // the right-hand side asks for no split
+}
+
 TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors) {
   // Without links through mirrors, the solver adds what the emitters send
   // by way of mirrors and glass to its right-hand side (per element: the
