@@ -222,6 +222,12 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
                   "hierarchical: power a link may carry unrefined, a fraction of the power leaving all surfaces")
       ->check(number_in(0.0, 1.0, true))
       ->capture_default_str();
+  command
+      .add_option("--mirror-depth", o.form_factors.mirror_depth,
+                  "planar mirrors a transfer may pass, one after another (hierarchical: links through chains "
+                  "of them; progressive: mirror images); 0: planar mirrors are traced like curved ones")
+      ->check(CLI::Range(0, max_mirror_depth))
+      ->capture_default_str();
   std::map<std::string, form_factor_method> methods;
   for (const auto& m : form_factor_method_names()) methods.emplace(std::string(m.name), m.method);
   command.add_option("--method", o.form_factors.method, "form-factor method")
@@ -272,9 +278,10 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
 }
 
 std::span<const char* const> solver_option_names() {
-  static constexpr const char* names[] = {"--solver",    "--link-tolerance", "--method",     "--max-edge",  "--until",
-                                          "--max-shots", "--time",           "--patch-edge", "--full-rays", "--rays",
-                                          "--hemicube",  "--adaptive",       "--tolerance",  "--min-edge"};
+  static constexpr const char* names[] = {"--solver",     "--link-tolerance", "--mirror-depth", "--method",
+                                          "--max-edge",   "--until",          "--max-shots",    "--time",
+                                          "--patch-edge", "--full-rays",      "--rays",         "--hemicube",
+                                          "--adaptive",   "--tolerance",      "--min-edge"};
   return names;
 }
 

@@ -334,6 +334,27 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
   }
 }
 
+// --mirror-depth sets how many planar mirrors the hierarchical solver's
+// links pass: the hall's four mirror walls make 4 chains of one mirror,
+// 4 + 4 x 3 of up to two and 4 + 12 + 36 of up to three; 0 leaves the
+// mirrors to traced paths. Past the images' limit it is refused.
+TEST(Cli, MirrorDepthSetsTheChainsOfPlanarMirrors) {
+  scratch_dir dir;
+  const std::string scene = source_path("assets/mirror_hall/mirror_hall.json");
+  for (const auto& [depth, chains] : {std::pair{0, 0}, {1, 4}, {2, 16}, {3, 52}}) {
+    const std::string stats = dir.path("d" + std::to_string(depth) + ".json");
+    const run_result r = run("solve " + scene + " --mirror-depth " + std::to_string(depth) +
+                             " --link-tolerance 1e-3 --until 0.2 --stats " + stats);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto h = nlohmann::json::parse(slurp(stats))["hierarchical"];
+    EXPECT_EQ(h["mirror_chains"], chains) << depth;
+    EXPECT_EQ(h["mirror_links"].get<int>() > 0, depth > 0) << depth;
+  }
+  const run_result r = run("solve " + scene + " --mirror-depth 5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--mirror-depth"), std::string::npos) << r.err;
+}
+
 // --max-edge with --no-radiosity sets the coarse solution the ambient term
 // comes from (it was replaced by twice the default).
 TEST(Cli, OnePassAmbientSolutionTakesTheMaxEdge) {
