@@ -53,11 +53,21 @@ void set_window(mirror_chain& chain, const planar_mirror& m) {
   chain.v_hi = v.hi;
 }
 
+// Two mirrors in one plane (the two sides of a two-sided mirror, or two
+// panes side by side) never pass light to each other: what leaves the
+// one goes away from the plane.
+bool coplanar(const mirror_set& set, const planar_mirror& a, const planar_mirror& b) {
+  const double same = glm::dot(a.normal, b.normal);
+  return std::abs(std::abs(same) - 1.0) < 1e-9 &&
+         std::abs(a.offset - (same > 0.0 ? b.offset : -b.offset)) <= set.tolerance;
+}
+
 void extend(const mirror_set& set, const mirror_chain& chain, int depth, std::vector<mirror_chain>& out) {
   if (chain.path.count >= depth) return;
   const int last = chain.path.count > 0 ? chain.path.mirrors[std::size_t(chain.path.count - 1)] : -1;
   for (int m = 0; m < int(set.mirrors.size()); ++m) {
-    if (m == last) continue;
+    if (m == last || (last >= 0 && coplanar(set, set.mirrors[std::size_t(last)], set.mirrors[std::size_t(m)])))
+      continue;
     mirror_chain next = chain;
     add_mirror(next, set.mirrors[std::size_t(m)], m);
     if (next.path.count == 1) set_window(next, set.mirrors[std::size_t(m)]);

@@ -34,7 +34,8 @@ struct mirror_chain {
   vec3 source_direction(const vec3& d) const { return glm::transpose(linear) * d; }
 };
 
-// Every chain of up to `depth` mirrors of the set, no mirror twice in a row.
+// Every chain of up to `depth` mirrors of the set, no mirror twice in a
+// row, nor two mirrors of one plane in a row.
 std::vector<mirror_chain> mirror_chains(const mirror_set& mirrors, int depth);
 
 // The bounding box of the image of box [lo, hi].

@@ -12,6 +12,7 @@
 #include "radiosity/mirror_chains.h"
 #include "radiosity/mirror_images.h"
 #include "radiosity/occlusion.h"
+#include "scene/two_sided.h"
 
 namespace bounce {
 namespace {
@@ -61,6 +62,29 @@ TEST(MirrorChains, ImagesReflectInTheLastMirrorFirst) {
       EXPECT_LT(glm::length(chain.source_direction(direction) - d), 1e-12);
     }
   }
+}
+
+TEST(MirrorChains, TheTwoSidesOfAMirrorMakeNoChainTogether) {
+  // A two-sided mirror panel is two mirrors in one plane, facing away from
+  // each other: light leaving one never reaches the other, so at depth 2
+  // there are the two single chains and no pair.
+  scene s;
+  add_polygon(s, {{0, 0, -2}, {0, 0, 2}, {4, 0, 2}, {4, 0, -2}}, add_material(s, rgb(0.5)));
+  const int m = add_material(s, rgb(0.0));
+  s.materials[std::size_t(m)].kr = rgb(0.9);
+  s.materials[std::size_t(m)].two_sided = true;
+  add_polygon(s, {{2, 0.5, -1}, {2, 2.5, -1}, {2, 2.5, 1}, {2, 0.5, 1}}, m);
+  add_back_sides(s);  // as loading a scene does
+  const patch_mesh mesh = mesh_of(s, 0.5);
+  const auto set = find_planar_mirrors(s, mesh);
+  ASSERT_TRUE(set);
+  ASSERT_EQ(set->mirrors.size(), 2u);
+  EXPECT_EQ(mirror_chains(*set, 2).size(), 2u);
+  EXPECT_EQ(mirror_chains(*set, 4).size(), 2u);
+  // Mirrors at right angles do pass light to each other.
+  const scene corner = two_mirrors();
+  const patch_mesh corner_mesh = mesh_of(corner, 0.5);
+  EXPECT_EQ(mirror_chains(*find_planar_mirrors(corner, corner_mesh), 3).size(), 6u);  // 0, 1, 01, 10, 010, 101
 }
 
 TEST(MirrorChains, TheWindowCullKeepsEveryPairWhoseSegmentsCrossTheMirror) {
