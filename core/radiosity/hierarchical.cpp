@@ -384,14 +384,19 @@ link_estimate estimate(const hierarchical_solver& solver, int i, int j) {
   return e;
 }
 
-float visibility(refine_context& ctx, int i, int j, int count) {
+// The visible fraction of a pair from `count` shadow rays between sample
+// points of both (through mirror chain `c`, to the source's image, when c
+// >= 0: the rays must then pass the chain's mirrors).
+float visibility(refine_context& ctx, int i, int j, int count, int c = -1) {
   const hierarchical_solver& solver = ctx.solver;
+  const mirror_chain* chain = c >= 0 ? &solver.chains[std::size_t(c)] : nullptr;
   const cluster_node& r = solver.tree.nodes[i];
   const cluster_node& s = solver.tree.nodes[j];
   // Leaves are keyed by element, so that the element-level solution casts the same rays.
   const std::uint64_t key_i = r.leaf() ? std::uint64_t(r.element) : (1ull << 40) + std::uint64_t(i);
   const std::uint64_t key_j = s.leaf() ? std::uint64_t(s.element) : (1ull << 40) + std::uint64_t(j);
-  std::uint64_t state = mix(solver.params.seed ^ mix(key_i * 0x100000001b3ull ^ mix(key_j)));
+  const std::uint64_t key = chain ? key_j ^ mix(std::uint64_t(c)) : key_j;
+  std::uint64_t state = mix(solver.params.seed ^ mix(key_i * 0x100000001b3ull ^ mix(key)));
   // Each pair counts by what it would carry (the cosines at both ends):
   // pairs that face away from each other carry nothing, and would
   // otherwise count the back of a box as a shadow.
@@ -402,7 +407,8 @@ float visibility(refine_context& ctx, int i, int j, int count) {
     const double u1 = (k + uniform(state)) / count, v1 = uniform(state);
     const double u2 = (((k * 7 + 3) % count) + uniform(state)) / count, v2 = uniform(state);
     const surface_point p = sample_node(solver.tree, *solver.mesh, i, u1, v1);
-    const surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
+    surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
+    if (chain) q = {chain->image(q.position), chain->image_direction(q.normal)};
     const vec3 pq = q.position - p.position;
     const vec3 from =
         p.position + p.normal * (glm::dot(pq, p.normal) >= 0.0 ? solver.context.offset : -solver.context.offset);
@@ -412,7 +418,8 @@ float visibility(refine_context& ctx, int i, int j, int count) {
     const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, p.normal)) *
                                              std::max(0.0, -glm::dot(pq, q.normal)) / (length * length)
                                        : 0.0;
-    const bool passes = !solver.context.occlusion->occluded(from, to);
+    const bool passes = chain ? weight > 0.0 && visible_through_mirrors(solver.context, chain->path, from, to)
+                              : !solver.context.occlusion->occluded(from, to);
     open_rays += passes ? 1 : 0;
     total += weight;
     open += passes ? weight : 0.0;
@@ -480,18 +487,24 @@ pair_error charge(const hierarchical_solver& solver, const std::vector<rgb>& nod
 }
 
 void refine_pair(refine_context& ctx, int i, int j);
+void refine_pair_through(refine_context& ctx, int i, int j, int c);
 
-void split_pair(refine_context& ctx, int i, int j) {
+// Splits the pair's larger side (through mirror chain `c` when c >= 0)
+// and refines the pairs with its children.
+void split_pair(refine_context& ctx, int i, int j, int c = -1) {
   const cluster_node& r = ctx.solver.tree.nodes[i];
   const cluster_node& s = ctx.solver.tree.nodes[j];
   const bool split_receiver = !r.leaf() && (s.leaf() || r.area >= s.area);
   const cluster_node& split = split_receiver ? r : s;
-  auto body = [&](int c) { split_receiver ? refine_pair(ctx, c, j) : refine_pair(ctx, i, c); };
+  auto body = [&](int k) {
+    const int a = split_receiver ? k : i, b = split_receiver ? j : k;
+    c < 0 ? refine_pair(ctx, a, b) : refine_pair_through(ctx, a, b, c);
+  };
   // Large pairs fan out over the threads; small ones stay on this one.
   if (ctx.solver.params.parallel && r.elements + s.elements > 4096) {
     tbb::parallel_for(split.first_child, split.first_child + split.child_count, body);
   } else {
-    for (int c = split.first_child; c < split.first_child + split.child_count; ++c) body(c);
+    for (int k = split.first_child; k < split.first_child + split.child_count; ++k) body(k);
   }
 }
 
@@ -598,59 +611,6 @@ link_estimate estimate_through(const hierarchical_solver& solver, int i, int j, 
   return e;
 }
 
-// The share of rays between sample points of the receiver and of the
-// source's image that pass the chain (weighted by the cosines at both
-// ends, as visibility() weights them).
-float visibility_through(refine_context& ctx, int i, int j, int c, int count) {
-  const hierarchical_solver& solver = ctx.solver;
-  const mirror_chain& chain = solver.chains[std::size_t(c)];
-  const cluster_node& r = solver.tree.nodes[std::size_t(i)];
-  const cluster_node& s = solver.tree.nodes[std::size_t(j)];
-  const std::uint64_t key_i = r.leaf() ? std::uint64_t(r.element) : (1ull << 40) + std::uint64_t(i);
-  const std::uint64_t key_j = s.leaf() ? std::uint64_t(s.element) : (1ull << 40) + std::uint64_t(j);
-  std::uint64_t state = mix(solver.params.seed ^ mix(key_i * 0x100000001b3ull ^ mix(key_j ^ mix(std::uint64_t(c)))));
-  double open = 0.0, total = 0.0;
-  int open_rays = 0;
-  for (int k = 0; k < count; ++k) {
-    const double u1 = (k + uniform(state)) / count, v1 = uniform(state);
-    const double u2 = (((k * 7 + 3) % count) + uniform(state)) / count, v2 = uniform(state);
-    const surface_point p = sample_node(solver.tree, *solver.mesh, i, u1, v1);
-    const surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
-    const vec3 q_position = chain.image(q.position), q_normal = chain.image_direction(q.normal);
-    const vec3 pq = q_position - p.position;
-    const double length = glm::length(pq);
-    const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, p.normal)) *
-                                             std::max(0.0, -glm::dot(pq, q_normal)) / (length * length)
-                                       : 0.0;
-    const vec3 from =
-        p.position + p.normal * (glm::dot(pq, p.normal) >= 0.0 ? solver.context.offset : -solver.context.offset);
-    const vec3 to =
-        q_position + q_normal * (glm::dot(pq, q_normal) <= 0.0 ? solver.context.offset : -solver.context.offset);
-    const bool passes = weight > 0.0 && visible_through_mirrors(solver.context, chain.path, from, to);
-    open_rays += passes ? 1 : 0;
-    total += weight;
-    open += passes ? weight : 0.0;
-  }
-  ctx.rays += std::uint64_t(count);
-  if (total > 0.0) return float(open / total);
-  return float(open_rays) / float(count);
-}
-
-void refine_pair_through(refine_context& ctx, int i, int j, int c);
-
-void split_pair_through(refine_context& ctx, int i, int j, int c) {
-  const cluster_node& r = ctx.solver.tree.nodes[std::size_t(i)];
-  const cluster_node& s = ctx.solver.tree.nodes[std::size_t(j)];
-  const bool split_receiver = !r.leaf() && (s.leaf() || r.area >= s.area);
-  const cluster_node& split = split_receiver ? r : s;
-  auto body = [&](int k) { split_receiver ? refine_pair_through(ctx, k, j, c) : refine_pair_through(ctx, i, k, c); };
-  if (ctx.solver.params.parallel && r.elements + s.elements > 4096) {
-    tbb::parallel_for(split.first_child, split.first_child + split.child_count, body);
-  } else {
-    for (int k = split.first_child; k < split.first_child + split.child_count; ++k) body(k);
-  }
-}
-
 // The oracle's charge for a pair through a chain: F x kr x B x A.
 double charge_through(const refine_context& ctx, int i, int j, int c, const link_estimate& e) {
   const cluster_node& r = ctx.solver.tree.nodes[std::size_t(i)];
@@ -672,11 +632,11 @@ void refine_pair_through(refine_context& ctx, int i, int j, int c) {
   const bool leaves = r.leaf() && s.leaf();
   const bool splittable = !leaves && !ctx.limit_hit.load(std::memory_order_relaxed);
   const double error = charge_through(ctx, i, j, c, e);
-  if (splittable && error > ctx.tolerance) return split_pair_through(ctx, i, j, c);
+  if (splittable && error > ctx.tolerance) return split_pair(ctx, i, j, c);
   const int rays = leaves ? ctx.solver.params.leaf_visibility_rays : ctx.solver.params.visibility_rays;
-  const float v = visibility_through(ctx, i, j, c, rays);
+  const float v = visibility(ctx, i, j, rays, c);
   if (splittable && v < 1.0f && ctx.solver.params.partial_factor * error > ctx.tolerance)
-    return split_pair_through(ctx, i, j, c);
+    return split_pair(ctx, i, j, c);
   if (v == 0.0f || !(e.factor > 0.0)) return;
   if (leaves) mark_split(ctx, i, j, e.factor, v, &ctx.solver.chains[std::size_t(c)]);
   keep_link_through(ctx, i, j, c, e.factor, v);
