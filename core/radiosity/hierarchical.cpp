@@ -611,11 +611,35 @@ link_estimate estimate_through(const hierarchical_solver& solver, int i, int j, 
   return e;
 }
 
-// The oracle's charge for a pair through a chain: F x kr x B x A.
+// The oracle's charge for a pair through a chain: F x kr x B x A, or,
+// from an inner node, what the point kernel's spread over the node's
+// sample elements could carry if its light came from one end of it, when
+// that is more.
 double charge_through(const refine_context& ctx, int i, int j, int c, const link_estimate& e) {
-  const cluster_node& r = ctx.solver.tree.nodes[std::size_t(i)];
-  return e.bound * channel_max(ctx.solver.chains[std::size_t(c)].path.kr) * r.area *
-         channel_max(ctx.node_b[std::size_t(j)]);
+  const hierarchical_solver& solver = ctx.solver;
+  const cluster_node& r = solver.tree.nodes[std::size_t(i)];
+  const cluster_node& s = solver.tree.nodes[std::size_t(j)];
+  const mirror_chain& chain = solver.chains[std::size_t(c)];
+  const double transfer = channel_max(chain.path.kr) * r.area * channel_max(ctx.node_b[std::size_t(j)]);
+  double bound = e.bound;
+  if (!s.leaf()) {
+    double lo = INFINITY, hi = 0.0;
+    for (const int element : solver.tree.strata[std::size_t(j)]) {
+      const glm::ivec3 t = solver.mesh->elements[std::size_t(element)];
+      const vec3 q = chain.image(
+          (solver.mesh->positions[t[0]] + solver.mesh->positions[t[1]] + solver.mesh->positions[t[2]]) / 3.0);
+      const vec3 n = chain.image_direction(solver.mesh->element_normals[std::size_t(element)]);
+      const vec3 d = q - r.centroid;
+      const double d2 = glm::dot(d, d);
+      if (!(d2 > 0.0)) continue;
+      const double receive = r.oriented ? std::max(0.0, glm::dot(r.normal, d)) : std::sqrt(d2);
+      const double kernel = receive * std::max(0.0, -glm::dot(n, d)) / (std::numbers::pi * d2 * d2);
+      lo = std::min(lo, kernel);
+      hi = std::max(hi, kernel);
+    }
+    if (hi > lo) bound = std::max(bound, (hi - lo) * s.area);
+  }
+  return bound * transfer;
 }
 
 void keep_link_through(refine_context& ctx, int i, int j, int c, double factor, float v) {

@@ -218,11 +218,13 @@ TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmitters
   EXPECT_LT(fine.worst, 1e-3);
   EXPECT_NEAR(fine.total, 1.0, 1e-3);
   // The default tolerance: links from nodes that hold lamp and floor
-  // elements alike (all face up) carry their mean radiosity at their
-  // centre's image, up to 15% off per element here; the total holds.
+  // elements alike (all face up) carry their mean radiosity from their
+  // centre's image. The oracle charges them the point kernel's spread
+  // over their sample elements, which splits most of them; without that
+  // charge single elements were 14.6% off here and the total 0.85% over.
   const result coarse = solve_at(1e-5);
-  EXPECT_LT(coarse.worst, 0.2);
-  EXPECT_NEAR(coarse.total, 1.0, 0.01);
+  EXPECT_LT(coarse.worst, 0.08);
+  EXPECT_NEAR(coarse.total, 1.0, 0.005);
 }
 
 TEST(SpecularTransfer, LinksThroughAMirrorSplitTheElementsWhereItsLightChanges) {
