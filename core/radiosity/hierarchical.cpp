@@ -55,20 +55,22 @@ rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
 // (pi r^2 + A), finite as r goes to 0. Times the cosine at p when the
 // point has a normal n (a cluster receiver has none: per unit area facing
 // the source). `towards` is set to the unit direction from p to s, and
-// `send` to s's projected area towards p.
-double disc_factor(const cluster_node& s, const vec3& p, const vec3* n, vec3& towards, double& send) {
-  const vec3 d = s.centroid - p;
+// `send` to s's projected area towards p. Through a mirror chain, the
+// same to s's image.
+double disc_factor(const cluster_node& s, const vec3& p, const vec3* n, vec3& towards, double& send,
+                   const mirror_chain* chain = nullptr) {
+  const vec3 d = (chain ? chain->image(s.centroid) : s.centroid) - p;
   const double r2 = glm::dot(d, d);
   towards = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
   const double receive = n ? std::max(0.0, glm::dot(*n, towards)) : 1.0;
-  send = projected_area(s, -towards);
+  send = projected_area(s, chain ? chain->source_direction(-towards) : -towards);
   return std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
 }
 
-double disc_factor(const cluster_node& s, const vec3& p, const vec3* n) {
+double disc_factor(const cluster_node& s, const vec3& p, const vec3* n, const mirror_chain* chain = nullptr) {
   vec3 towards;
   double send = 0.0;
-  return disc_factor(s, p, n, towards, send);
+  return disc_factor(s, p, n, towards, send, chain);
 }
 
 // The form factor from a point p (normal n) to inner node s, from its
@@ -563,23 +565,6 @@ image_of_node node_image(const cluster_node& s, const mirror_chain& chain) {
   return out;
 }
 
-// The disc estimate (disc_factor) to node s's image in a chain.
-double image_disc_factor(const cluster_node& s, const mirror_chain& chain, const vec3& p, const vec3* n) {
-  const vec3 d = chain.image(s.centroid) - p;
-  const double r2 = glm::dot(d, d);
-  const vec3 towards = r2 > 0.0 ? d / std::sqrt(r2) : vec3(0.0);
-  const double receive = n ? std::max(0.0, glm::dot(*n, towards)) : 1.0;
-  const double send = projected_area(s, chain.source_direction(-towards));
-  return std::min(1.0, receive * send / (std::numbers::pi * r2 + send));
-}
-
-bool reaches_in_front(const planar_mirror& m, const vec3& lo, const vec3& hi, double slack) {
-  double most = -INFINITY;
-  for (int k = 0; k < 8; ++k)
-    most = std::max(most, m.side(vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z)));
-  return most > slack;
-}
-
 link_estimate estimate_through(const hierarchical_solver& solver, int i, int j, const mirror_chain& chain) {
   const cluster_node& r = solver.tree.nodes[std::size_t(i)];
   const cluster_node& s = solver.tree.nodes[std::size_t(j)];
@@ -587,7 +572,7 @@ link_estimate estimate_through(const hierarchical_solver& solver, int i, int j, 
   const planar_mirror& last = mirrors.mirrors[std::size_t(chain.path.mirrors[std::size_t(chain.path.count - 1)])];
   link_estimate e;
   e.none = true;
-  if (!reaches_in_front(last, s.lo, s.hi, mirrors.tolerance)) return e;
+  if (!box_reaches_in_front(last, s.lo, s.hi, mirrors.tolerance)) return e;
   const image_of_node image = node_image(s, chain);
   const double slack = 1e-9 * solver.mesh->scene_diagonal;
   if ((r.oriented && behind(r.normal, image.lo, image.hi, r.lo, r.hi, slack)) ||
@@ -605,7 +590,7 @@ link_estimate estimate_through(const hierarchical_solver& solver, int i, int j, 
     e.none = !(e.factor > 0.0);
     return e;
   }
-  e.factor = image_disc_factor(s, chain, r.centroid, r.oriented ? &r.normal : nullptr);
+  e.factor = disc_factor(s, r.centroid, r.oriented ? &r.normal : nullptr, &chain);
   const bool close = std::sqrt(r2) < r.radius() + s.radius();
   e.bound = close ? 1.0 : std::max(e.factor, 0.1 * s.area / (std::numbers::pi * r2 + s.area));
   return e;
@@ -1413,20 +1398,16 @@ bool final_gather(hierarchical_solver& solver) {
           const mirror_chain& chain = solver.chains[std::size_t(m.chain)];
           const cluster_node& s = tree.nodes[m.link.source];
           ++count;
-          const vec3 towards = chain.image(s.centroid) - leaf.centroid;
-          const double r2 = glm::dot(towards, towards);
-          if (!(r2 > 0.0)) continue;
-          const vec3 dir = towards / std::sqrt(r2);
+          vec3 dir;
+          double send = 0.0;
+          double f = disc_factor(s, leaf.centroid, &leaf.normal, dir, send, &chain);
+          if (dir == vec3(0.0)) continue;  // no direction
           const vec3 out = chain.source_direction(-dir);
-          const double send = projected_area(s, out);
-          double f = 0.0;
           if (s.leaf()) {
             const glm::ivec3 t = mesh.elements[s.element];
             const vec3 polygon[3] = {chain.image(mesh.positions[t[0]]), chain.image(mesh.positions[t[1]]),
                                      chain.image(mesh.positions[t[2]])};
             f = point_polygon_form_factor(leaf.centroid, leaf.normal, polygon);
-          } else {
-            f = image_disc_factor(s, chain, leaf.centroid, &leaf.normal);
           }
           f *= double(m.link.visibility);
           if (!(f > 0.0)) continue;

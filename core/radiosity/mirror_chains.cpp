@@ -94,6 +94,10 @@ void image_box(const mirror_chain& chain, const vec3& lo, const vec3& hi, vec3& 
   }
 }
 
+bool box_reaches_in_front(const planar_mirror& mirror, const vec3& lo, const vec3& hi, double slack) {
+  return along(box_corners(lo, hi), mirror.normal, mirror.offset).hi > slack;
+}
+
 bool may_cross_first_mirror(const mirror_set& mirrors, const mirror_chain& chain, const vec3& lo, const vec3& hi,
                             const vec3& image_lo, const vec3& image_hi) {
   const planar_mirror& m = mirrors.mirrors[std::size_t(chain.path.mirrors[0])];

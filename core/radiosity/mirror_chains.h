@@ -41,6 +41,10 @@ std::vector<mirror_chain> mirror_chains(const mirror_set& mirrors, int depth);
 // The bounding box of the image of box [lo, hi].
 void image_box(const mirror_chain& chain, const vec3& lo, const vec3& hi, vec3& image_lo, vec3& image_hi);
 
+// Whether some point of box [lo, hi] lies more than `slack` in front of
+// the mirror's plane (a source there may send light into the mirror).
+bool box_reaches_in_front(const planar_mirror& mirror, const vec3& lo, const vec3& hi, double slack);
+
 // Whether some segment from a point of box [lo, hi] (the receiver's side)
 // to a point of box [image_lo, image_hi] (an image) may cross the chain's
 // first mirror plane inside its outline, from its front: false means no
