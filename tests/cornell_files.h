@@ -8,7 +8,7 @@
 
 #include "test_files.h"
 
-namespace bounce::testing {
+namespace bounce::test_support {
 
 inline const char* cornell_mtl =
     "newmtl white\nKd 0.725 0.71 0.68\n"
@@ -53,4 +53,4 @@ inline std::string write_official_cornell(const scratch_dir& dir, const std::str
                        "]},\n \"surfaces\": [{\"obj\": \"cornell_" + light_y + ".obj\"}]}\n");
 }
 
-}  // namespace bounce::testing
+}  // namespace bounce::test_support

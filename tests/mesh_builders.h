@@ -10,7 +10,7 @@
 #include "scene/scene.h"
 #include "scene/scene_io.h"
 
-namespace bounce::testing {
+namespace bounce::test_support {
 
 // Adds a material and returns its index.
 inline int add_material(scene& s, rgb rho, rgb ke = rgb(0.0)) {
@@ -71,4 +71,4 @@ inline scene default_cornell_box() {
   return s;
 }
 
-}  // namespace bounce::testing
+}  // namespace bounce::test_support

@@ -1,5 +1,6 @@
-// Scratch files for tests: each test gets its own folder under the system
-// temp directory, removed when the test ends.
+// Scratch files for tests: each test gets its own folder under the build
+// tree (test-scratch/), removed when the test ends, so that two build trees
+// never share one and nothing is written beside the sources.
 #pragma once
 
 #include <filesystem>
@@ -8,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-namespace bounce::testing {
+namespace bounce::test_support {
 
 struct scratch_dir {
   std::filesystem::path root;
@@ -16,7 +17,7 @@ struct scratch_dir {
   // `tag` tells apart several scratch folders of one test.
   explicit scratch_dir(const std::string& tag = "") {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    root = std::filesystem::temp_directory_path() / "bounce_tests" /
+    root = std::filesystem::path(BOUNCE_BINARY_DIR) / "test-scratch" /
            (std::string(info->test_suite_name()) + "." + info->name() + tag);
     std::filesystem::remove_all(root);
     std::filesystem::create_directories(root);
@@ -40,4 +41,4 @@ inline std::string source_path(const std::string& relative) {
   return std::string(BOUNCE_SOURCE_DIR) + "/" + relative;
 }
 
-}  // namespace bounce::testing
+}  // namespace bounce::test_support

@@ -17,8 +17,8 @@
 
 namespace {
 
-using bounce::testing::scratch_dir;
-using bounce::testing::source_path;
+using bounce::test_support::scratch_dir;
+using bounce::test_support::source_path;
 
 struct run_result {
   int code = -1;

@@ -51,15 +51,15 @@ TEST(ClosedSurface, InwardOpenOrInconsistentSurfacesAreNot) {
 
 TEST(ClosedSurface, TheViewCullsAMirrorSphereButNotAPlanarMirror) {
   scene s;
-  const int m = testing::add_material(s, rgb(0.1));
+  const int m = test_support::add_material(s, rgb(0.1));
   s.materials[std::size_t(m)].kr = rgb(0.8);
   surface ball;
   ball.name = "ball";
   ball.geometry = sphere{vec3(0.0, 1.0, 0.0), 0.5, m};
   s.surfaces.push_back(ball);
-  testing::add_polygon(s, {{-2, 0, -1}, {2, 0, -1}, {2, 2, -1}, {-2, 2, -1}}, m, "wall mirror");
+  test_support::add_polygon(s, {{-2, 0, -1}, {2, 0, -1}, {2, 2, -1}, {-2, 2, -1}}, m, "wall mirror");
   const auto source = std::make_shared<const scene>(s);
-  const gl::mesh_arrays arrays = gl::make_mesh_arrays(testing::mesh_of(s, 0.3), source);
+  const gl::mesh_arrays arrays = gl::make_mesh_arrays(test_support::mesh_of(s, 0.3), source);
   ASSERT_EQ(arrays.probes.size(), 2u);
   for (const gl::specular_surface& probe : arrays.probes) {
     const std::string& name = s.surfaces[std::size_t(probe.surface)].name;

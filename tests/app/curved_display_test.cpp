@@ -13,9 +13,9 @@
 namespace bounce {
 namespace {
 
-using testing::add_closed_box;
-using testing::add_material;
-using testing::mesh_of;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::mesh_of;
 
 // Every undirected edge of a closed surface's triangles is used twice.
 void expect_closed(const std::vector<unsigned int>& triangles, const std::string& what) {

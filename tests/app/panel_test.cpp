@@ -14,6 +14,7 @@
 #include <imgui_internal.h>
 
 #include "mesh_builders.h"
+#include "test_files.h"
 #include "panel.h"
 #include "scene/scene_io.h"
 #include "solver_worker.h"
@@ -46,7 +47,7 @@ std::string joined(const std::vector<std::string>& lines) {
 // settings at `link_tolerance`, once it is idle.
 std::shared_ptr<const worker_view> solved(solver_worker& worker, panel_state& panel, double link_tolerance) {
   panel.solver = hierarchical(link_tolerance);
-  worker.load(testing::default_cornell_box(), panel.solver);
+  worker.load(test_support::default_cornell_box(), panel.solver);
   worker.wait_idle();
   return worker.latest();
 }
@@ -129,7 +130,7 @@ TEST(Panel, TolerancesAreShownShort) {
 
 TEST(Panel, StatisticsFollowTheSolverThatRuns) {
   solver_worker worker;
-  worker.load(testing::default_cornell_box(), hierarchical(1e-5));
+  worker.load(test_support::default_cornell_box(), hierarchical(1e-5));
   worker.pause();
   worker.step();  // the first links, at the coarsest tolerance: more to refine
   worker.wait_idle();
@@ -157,7 +158,7 @@ TEST(Panel, StatisticsFollowTheSolverThatRuns) {
 
   solver_settings progressive = hierarchical(1e-5);
   progressive.method = solver_method::progressive;
-  worker.load(testing::default_cornell_box(), progressive);
+  worker.load(test_support::default_cornell_box(), progressive);
   worker.wait_idle();
   lines = statistics_lines(*worker.latest(), 12.5);
   EXPECT_TRUE(has_line(lines, "progressive: converged")) << joined(lines);
@@ -170,7 +171,7 @@ TEST(Panel, StatisticsFollowTheSolverThatRuns) {
 // right edge (a label cut off), for either solver.
 TEST(Panel, LabelsFitThePanelForEitherSolver) {
   solver_worker worker;
-  worker.load(testing::default_cornell_box(), hierarchical(1e-4));
+  worker.load(test_support::default_cornell_box(), hierarchical(1e-4));
   worker.wait_idle();
   const auto view = worker.latest();
   ImGui::CreateContext();
@@ -244,7 +245,8 @@ TEST(Panel, AssetScenesAreFoundNextToTheExecutable) {
   EXPECT_TRUE(has("embedded:cornell_box/cornell_box.json"));
   EXPECT_TRUE(has("generated:box-room-60"));
   // Installed (cmake --install): bin/bounce finds share/bounce/assets.
-  const std::filesystem::path prefix = std::filesystem::temp_directory_path() / "bounce_tests" / "install_prefix";
+  const test_support::scratch_dir scratch;
+  const std::filesystem::path prefix = scratch.root / "install_prefix";
   std::filesystem::remove_all(prefix);
   std::filesystem::create_directories(prefix / "bin");
   std::filesystem::create_directories(prefix / "share/bounce/assets/room");
@@ -259,7 +261,8 @@ TEST(Panel, AssetScenesAreFoundNextToTheExecutable) {
 }
 
 TEST(Panel, RecentScenesAreKeptMostRecentFirst) {
-  const std::filesystem::path home = std::filesystem::temp_directory_path() / "bounce_tests" / "recent_config";
+  const test_support::scratch_dir scratch;
+  const std::filesystem::path home = scratch.root / "config";
   std::filesystem::remove_all(home);
   ::setenv("XDG_CONFIG_HOME", home.c_str(), 1);
   EXPECT_TRUE(read_recent_scenes().empty());
@@ -306,7 +309,8 @@ TEST(Panel, CopiedCamerasReadBackExactly) {
 }
 
 TEST(Panel, BookmarksAreKeptPerScene) {
-  const std::filesystem::path home = std::filesystem::temp_directory_path() / "bounce_tests" / "bookmark_config";
+  const test_support::scratch_dir scratch;
+  const std::filesystem::path home = scratch.root / "config";
   std::filesystem::remove_all(home);
   ::setenv("XDG_CONFIG_HOME", home.c_str(), 1);
   camera a, b;

@@ -1,6 +1,6 @@
 // A file dropped on the window opens, as from a file manager: the drop is
 // made over XDND by tests/app/xdnd_drop (no X tool can make one) on a real
-// window under Xvfb.
+// window under an X server of its own (x_server.h).
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -12,11 +12,13 @@
 #include <gtest/gtest.h>
 
 #include "test_files.h"
+#include "x_server.h"
 
 namespace bounce {
 namespace {
 
-using testing::scratch_dir;
+using test_support::scratch_dir;
+using test_support::x_server;
 
 // A lit floor: small enough to solve in a moment at --max-edge 0.5.
 constexpr const char* small_scene = R"({
@@ -46,16 +48,19 @@ std::string read_all(const std::string& path) {
 // Dropping second.json on the window showing first.json opens it: the title
 // becomes "second.json - Bounce" and it heads the recent list.
 TEST(Window, ADroppedFileOpens) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xwininfo >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run or xwininfo is not installed (third_party/install-deps.sh installs them)";
+  if (!test_support::have_xvfb() || std::system("command -v xwininfo >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "Xvfb or xwininfo is not installed (third_party/install-deps.sh installs them)";
   scratch_dir dir;
+  x_server server(dir.path("xvfb.log"));
+  ASSERT_TRUE(server.ok()) << server.error();
   const std::string first = dir.write("first.json", small_scene);
   const std::string second = dir.write("second.json", small_scene);
-  // Inside one X server: start the window on first.json, drop second.json
+  // On the test's own X server: start the window on first.json, drop second.json
   // on it (the tool waits up to 60 s for the window), then poll the window
   // tree (at most 60 s, and only while bounce runs: its window goes with
   // it) for the new title, and let the scripted run end (exiting 0).
-  std::string script = "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
+  std::string script = "export DISPLAY=" + server.display() + "\n";
+  script += "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
   script += quoted(BOUNCE_EXE) + " view " + quoted(first) + " --max-edge 0.5 --frames 600 --exit >" +
             quoted(dir.path("bounce.txt")) + " 2>&1 &\n";
   script += "bounce=$!\n";
@@ -71,7 +76,7 @@ TEST(Window, ADroppedFileOpens) {
       "  sleep 0.1\n"
       "done\n"
       "wait $bounce\n";  // the script's status: bounce's
-  const std::string command = "xvfb-run -a sh " + dir.write("run.sh", script);
+  const std::string command = "sh " + dir.write("run.sh", script);
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << read_all(dir.path("bounce.txt"));
   EXPECT_EQ(read_first_line(dir.path("drop_status.txt")), "0") << read_all(dir.path("drop.txt"));

@@ -27,7 +27,7 @@ solver_settings coarse(double until) {
 
 TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
   solver_worker worker;
-  worker.load(testing::default_cornell_box(), coarse(0.01));
+  worker.load(test_support::default_cornell_box(), coarse(0.01));
   worker.wait_idle();
   auto view = worker.latest();
   ASSERT_TRUE(view->mesh);
@@ -48,7 +48,7 @@ TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
   settings.max_edge = 60;
   settings.stop.unshot_fraction = 0.01;
   ASSERT_EQ(settings.method, solver_method::hierarchical);
-  worker.load(testing::default_cornell_box(), settings);
+  worker.load(test_support::default_cornell_box(), settings);
   worker.wait_idle();
   auto view = worker.latest();
   ASSERT_TRUE(view->solution);
@@ -62,7 +62,7 @@ TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
 
 TEST(SolverWorker, PauseStepAndRestart) {
   solver_worker worker;
-  worker.load(testing::default_cornell_box(), coarse(1e-9));
+  worker.load(test_support::default_cornell_box(), coarse(1e-9));
   worker.pause();
   worker.wait_idle();
   const std::uint64_t paused_at = worker.latest()->solution->stats.shots;
@@ -97,7 +97,7 @@ TEST(SolverWorker, PauseStepAndRestart) {
 // with one history point per shot made and none for the step that found
 // nothing left.
 TEST(SolverWorker, ARunThatRunsOutRecordsOnlyTheShotsMade) {
-  scene s = testing::default_cornell_box();
+  scene s = test_support::default_cornell_box();
   for (material& m : s.materials) m.rho = rgb(0.0);
   solver_settings settings = coarse(0.0);
   solver_worker worker;
@@ -118,7 +118,7 @@ TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
   settings.max_edge = 150;
   settings.adaptive.enabled = true;
   settings.adaptive.tolerance = 0.15;
-  worker.load(testing::default_cornell_box(), settings);
+  worker.load(test_support::default_cornell_box(), settings);
   worker.wait_idle();
   const auto view = worker.latest();
   ASSERT_TRUE(view->mesh && view->solution);
@@ -131,7 +131,7 @@ TEST(SolverWorker, PublishesTheRefinedMeshWithItsSolution) {
 // thread: the arrays once per mesh, the colours with every solution.
 TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
   solver_worker worker;
-  worker.load(testing::default_cornell_box(), coarse(0.05));
+  worker.load(test_support::default_cornell_box(), coarse(0.05));
   worker.wait_idle();
   const auto view = worker.latest();
   ASSERT_TRUE(view->mesh && view->solution && view->mesh_arrays && view->colours);
@@ -177,9 +177,9 @@ TEST(ConvergenceLog, AppendsAcrossBlocksAndSharesThem) {
 }
 
 TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
-  testing::scratch_dir dir;
+  test_support::scratch_dir dir;
   solver_worker worker;
-  worker.load(testing::default_cornell_box(), coarse(0.05));
+  worker.load(test_support::default_cornell_box(), coarse(0.05));
   worker.wait_idle();
   const auto before = worker.latest();
   worker.load_file(dir.write("bad.json", "{ not json"), coarse(0.05));
@@ -189,7 +189,7 @@ TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
   EXPECT_EQ(after->mesh, before->mesh);
   EXPECT_EQ(after->mesh_version, before->mesh_version);
   // A good scene file replaces it and clears the error.
-  worker.load_file(testing::source_path("assets/furnace/furnace.json"), coarse(0.05));
+  worker.load_file(test_support::source_path("assets/furnace/furnace.json"), coarse(0.05));
   worker.wait_idle();
   EXPECT_TRUE(worker.latest()->error.empty());
   EXPECT_EQ(worker.latest()->mesh_version, before->mesh_version + 1);
@@ -201,7 +201,7 @@ TEST(SolverWorker, ABadSceneKeepsThePreviousOne) {
 TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
   solver_worker worker;
   error_tracker tracker;
-  worker.load(testing::default_cornell_box(), coarse(1e-3));
+  worker.load(test_support::default_cornell_box(), coarse(1e-3));
   worker.wait_idle();
   const auto first = worker.latest();
   EXPECT_FALSE(tracker.status("s").ready);
@@ -253,7 +253,7 @@ TEST(StillJob, ProgressivePhotonMappingShowsItsPasses) {
   solver_worker worker;
   solver_settings settings = coarse(1e-2);
   settings.max_edge = 0.3;  // metres
-  worker.load_file(testing::source_path("assets/glass_on_table/glass_on_table.json"), settings);
+  worker.load_file(test_support::source_path("assets/glass_on_table/glass_on_table.json"), settings);
   worker.wait_idle();
   const auto view = worker.latest();
   ASSERT_TRUE(view->mesh && view->solution);

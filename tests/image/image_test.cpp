@@ -12,7 +12,7 @@
 namespace bounce {
 namespace {
 
-using testing::scratch_dir;
+using test_support::scratch_dir;
 
 TEST(ImageFiles, PfmRoundTripIsExact) {
   scratch_dir dir;

@@ -23,7 +23,7 @@ scene bench_scene(const std::string& name) {
   return s;
 }
 
-using testing::mesh_of;
+using test_support::mesh_of;
 
 // ---- metrics ----
 

@@ -18,10 +18,10 @@
 namespace bounce {
 namespace {
 
-using testing::add_closed_box;
-using testing::add_material;
-using testing::add_polygon;
-using testing::furnace;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::furnace;
 
 scene load(const std::string& path) {
   scene s;

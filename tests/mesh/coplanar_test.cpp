@@ -18,8 +18,8 @@
 namespace bounce {
 namespace {
 
-using testing::scratch_dir;
-using testing::source_path;
+using test_support::scratch_dir;
+using test_support::source_path;
 
 long long doubled_area(const std::vector<int_point>& p, const std::array<int, 3>& t) {
   const int_point a = p[t[0]], b = p[t[1]], c = p[t[2]];

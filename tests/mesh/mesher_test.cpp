@@ -14,8 +14,8 @@
 namespace bounce {
 namespace {
 
-using testing::add_material;
-using testing::add_polygon;
+using test_support::add_material;
+using test_support::add_polygon;
 
 scene cornell() {
   scene s;
@@ -24,7 +24,7 @@ scene cornell() {
   return s;
 }
 
-using testing::mesh_of;
+using test_support::mesh_of;
 
 double polygon_area(const polygon_mesh& m, const polygon_face& f) {
   vec3 newell(0.0);

@@ -13,9 +13,9 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_closed_box;
-using testing::add_material;
-using testing::add_polygon;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::add_polygon;
 
 // ---- the analytic point-to-polygon term ----
 

@@ -19,11 +19,11 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_material;
-using testing::add_polygon;
-using testing::furnace;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::furnace;
 
-using testing::mesh_of;
+using test_support::mesh_of;
 
 radiosity_params hierarchical(double tolerance) {
   radiosity_params p;
@@ -42,7 +42,7 @@ void solve(radiosity_state& state, double fraction, int max_steps = 400) {
 }
 
 scene cornell() {
-  return testing::default_cornell_box();
+  return test_support::default_cornell_box();
 }
 
 double largest_relative_difference(const std::vector<rgb>& a, const std::vector<rgb>& b) {
@@ -290,7 +290,7 @@ TEST(Hierarchical, AClusterSendsWhatItsElementsFacingTheReceiverSend) {
   const int black = add_material(s, rgb(0.0));
   const int light = add_material(s, rgb(0.0), rgb(10.0));
   const int white = add_material(s, rgb(0.5));
-  testing::add_closed_box(s, vec3(-0.1, 1.0, -0.1), vec3(0.1, 1.2, 0.1), black);
+  test_support::add_closed_box(s, vec3(-0.1, 1.0, -0.1), vec3(0.1, 1.2, 0.1), black);
   for (surface& face : s.surfaces) {  // facing out: a solid
     std::vector<int>& corners = std::get<polygon_mesh>(face.geometry).faces[0].position;
     std::reverse(corners.begin(), corners.end());

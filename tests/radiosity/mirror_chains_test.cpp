@@ -17,9 +17,9 @@
 namespace bounce {
 namespace {
 
-using testing::add_material;
-using testing::add_polygon;
-using testing::mesh_of;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::mesh_of;
 
 // Two mirrors at right angles over a floor: a tall one facing +x at
 // x = 0, a wide one facing down at y = 3.

@@ -16,12 +16,12 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_closed_box;
-using testing::add_material;
-using testing::add_polygon;
-using testing::furnace;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::furnace;
 
-using testing::mesh_of;
+using test_support::mesh_of;
 
 radiosity_params with_rays(int rays) {
   radiosity_params p;

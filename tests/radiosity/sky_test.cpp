@@ -19,9 +19,9 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_material;
-using testing::add_polygon;
-using testing::mesh_of;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::mesh_of;
 
 // A 2 x 2 floor facing +y, nothing else: it sees the whole upper sky.
 scene open_floor(const sky_light& sky, double rho = 0.5) {
@@ -159,7 +159,7 @@ TEST(Sky, TracersSeeTheSkyAndLightWithIt) {
 }
 
 TEST(Sky, SceneFilesDescribeItAndBareModelsGetOne) {
-  testing::scratch_dir dir;
+  test_support::scratch_dir dir;
   const std::string floor = R"("materials": {"white": {"rho": [0.5, 0.5, 0.5]}},
     "surfaces": [{"polygon": [[-1, 0, -1], [-1, 0, 1], [1, 0, 1], [1, 0, -1]], "material": "white"}])";
   scene s;

@@ -25,9 +25,9 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_material;
-using testing::add_polygon;
-using testing::mesh_of;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::mesh_of;
 
 int add_mirror(scene& s, rgb kr) {
   const int m = add_material(s, rgb(0.0));
@@ -612,7 +612,7 @@ TEST(SpecularTransfer, PowerBooksBalanceWithMirrorsAndGlass) {
   scene s;
   const int wall = add_material(s, rgb(0.6));
   const int lamp = add_material(s, rgb(0.5), rgb(5.0));
-  testing::add_closed_box(s, vec3(-2.0), vec3(2.0), wall);
+  test_support::add_closed_box(s, vec3(-2.0), vec3(2.0), wall);
   add_square(s, -0.3, 0.3, -0.3, 0.3, 1.99, false, lamp);
   add_polygon(s, {{1.99, -1.5, -1.5}, {1.99, -1.5, 1.5}, {1.99, 1.5, 1.5}, {1.99, 1.5, -1.5}}, add_mirror(s, rgb(0.8)));
   add_outward_box(s, vec3(-1.0, -1.9, -1.0), vec3(-0.2, -1.0, -0.2), add_glass(s, 1.5));

@@ -25,7 +25,7 @@ namespace bounce {
 namespace {
 
 using json = nlohmann::json;
-using testing::scratch_dir;
+using test_support::scratch_dir;
 
 std::string base64(const std::string& bytes) {
   static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -530,7 +530,7 @@ TEST(Gltf, EmissiveQuadLightsTheQuadBelow) {
   scene s;
   load_report report;
   ASSERT_TRUE(load(dir.write("lit.glb", f.glb()), s, report));
-  const patch_mesh mesh = testing::mesh_of(s, 0.2);
+  const patch_mesh mesh = test_support::mesh_of(s, 0.2);
   radiosity_params params;
   params.form_factors.shadow_rays = 1;
   auto state = make_radiosity_state(s, mesh, params);

@@ -16,7 +16,7 @@
 namespace bounce {
 namespace {
 
-using testing::scratch_dir;
+using test_support::scratch_dir;
 
 const char* triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 

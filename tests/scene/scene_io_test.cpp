@@ -18,8 +18,8 @@
 namespace bounce {
 namespace {
 
-using testing::scratch_dir;
-using testing::source_path;
+using test_support::scratch_dir;
+using test_support::source_path;
 
 const char* simple_mtl = R"(newmtl white
 Kd 0.5 0.5 0.5

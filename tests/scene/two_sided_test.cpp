@@ -21,9 +21,9 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_material;
-using testing::add_polygon;
-using testing::mesh_of;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::mesh_of;
 
 TEST(TwoSided, BacksAreTheSameFacesTurnedOver) {
   scene s;
@@ -131,7 +131,7 @@ TEST(TwoSided, AnUpsideDownFloorIsLitWhenTwoSided) {
 }
 
 TEST(TwoSided, SceneFilesAndGltfSayIt) {
-  testing::scratch_dir dir;
+  test_support::scratch_dir dir;
   scene s;
   load_report report;
   ASSERT_TRUE(load_scene(dir.write("t.json", R"({"materials": {"paper": {"rho": [0.5, 0.5, 0.5], "two_sided": true},

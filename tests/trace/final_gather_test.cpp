@@ -23,8 +23,8 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_material;
-using testing::add_polygon;
+using test_support::add_material;
+using test_support::add_polygon;
 
 // ---- the irradiance cache ----
 
@@ -218,7 +218,7 @@ TEST(FinalGather, FurnaceStillIsKeOverOneMinusRho) {
   // Every face emits Ke = 1 and reflects rho = 0.5: L = 2 everywhere. The
   // final gather takes B - E from the solution at its hits; direct light
   // comes from shadow rays, whose 1/d^2 near the edges is the noise.
-  scene s = testing::furnace(0.5);
+  scene s = test_support::furnace(0.5);
   s.view.eye = vec3(0.0);
   s.view.target = vec3(0, 0, 1);
   s.view.up = vec3(0, 1, 0);
@@ -414,7 +414,7 @@ TEST(FinalGather, CausticUnderAGlassSlabMatchesThePathTracer) {
   s.materials[glass].fresnel = true;
   add_polygon(s, {{-0.25, 2, -0.25}, {0.25, 2, -0.25}, {0.25, 2, 0.25}, {-0.25, 2, 0.25}}, light);
   add_polygon(s, {{-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}}, floor);
-  testing::add_closed_box(s, vec3(-1, 0.95, -1), vec3(1, 1.05, 1), glass);
+  test_support::add_closed_box(s, vec3(-1, 0.95, -1), vec3(1, 1.05, 1), glass);
   for (std::size_t i = s.surfaces.size() - 6; i < s.surfaces.size(); ++i) {  // facing out: a solid
     std::vector<int>& corners = std::get<polygon_mesh>(s.surfaces[i].geometry).faces[0].position;
     std::reverse(corners.begin(), corners.end());
@@ -487,7 +487,7 @@ TEST(FinalGather, TwoPassAgreesWithThePathTracerOnTheCornellBox) {
   // A coarse solution (100 mm elements): Whitted's still shows its errors
   // (light leaks, blurred contact shadows), the final gather averages them
   // away. Measured: twopass 4.6%, Whitted 6.8% against 1024 spp.
-  scene s = testing::default_cornell_box();
+  scene s = test_support::default_cornell_box();
   s.view.width = s.view.height = 32;
   const solution solved(s, 100.0, 1e-3);
   const ray_scene rays(s);

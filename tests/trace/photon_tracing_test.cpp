@@ -17,9 +17,9 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_closed_box;
-using testing::add_material;
-using testing::add_polygon;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::add_polygon;
 
 // Square of half-width `a` in the plane y = `height`, facing up or down.
 void add_square(scene& s, double a, double height, bool facing_up, int material) {

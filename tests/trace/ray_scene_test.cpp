@@ -17,9 +17,9 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_closed_box;
-using testing::add_material;
-using testing::source_path;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::source_path;
 
 // Fibonacci points on the unit sphere.
 std::vector<vec3> sphere_points(int n) {

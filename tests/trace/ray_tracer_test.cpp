@@ -21,11 +21,11 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using testing::add_closed_box;
-using testing::add_material;
-using testing::add_polygon;
-using testing::mesh_of;
-using testing::source_path;
+using test_support::add_closed_box;
+using test_support::add_material;
+using test_support::add_polygon;
+using test_support::mesh_of;
+using test_support::source_path;
 
 scene load(const std::string& relative) {
   scene s;
