@@ -10,7 +10,7 @@ packages=(
   libembree-dev libtbb-dev python3-glad libgtest-dev
   libstb-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libpolyclipping-dev
   libtinygltf-dev libtinyexr-dev libnanoflann-dev
-  xvfb xauth x11-utils libx11-dev
+  ninja-build xvfb xauth x11-utils libx11-dev
 )
 
 missing=()
