@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -22,6 +21,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
+
+#include "base/check.h"
 
 namespace bounce {
 namespace {
@@ -66,7 +67,7 @@ vec3 unit_or_zero(const vec3& v) {
 }
 
 int add_vertex(triangle_mesh& m, const vec3& p, const vec3& n, const vec2& uv) {
-  assert(m.positions.size() < static_cast<std::size_t>(std::numeric_limits<int>::max()));
+  BOUNCE_CHECK_LT(m.positions.size(), static_cast<std::size_t>(std::numeric_limits<int>::max()));
   m.positions.push_back(p);
   m.normals.push_back(n);
   m.uvs.push_back(uv);
@@ -177,8 +178,8 @@ struct corner {
 // The face's corners with consecutive repeats of a position removed,
 // including the last against the first.
 std::vector<corner> distinct_corners(const polygon_face& f) {
-  assert(f.normal.empty() || f.normal.size() == f.position.size());
-  assert(f.uv.empty() || f.uv.size() == f.position.size());
+  BOUNCE_DCHECK(f.normal.empty() || f.normal.size() == f.position.size());
+  BOUNCE_DCHECK(f.uv.empty() || f.uv.size() == f.position.size());
   std::vector<corner> out;
   for (std::size_t i = 0; i < f.position.size(); ++i) {
     const corner c{f.position[i], f.normal.empty() ? -1 : f.normal[i], f.uv.empty() ? -1 : f.uv[i]};
@@ -375,7 +376,7 @@ double product(const vec3& v) {
 }
 
 quadric_grid quadric_resolution(const quadric& q, double cell) {
-  assert(glm::all(glm::lessThan(q.box_min, q.box_max)));
+  BOUNCE_CHECK(glm::all(glm::lessThan(q.box_min, q.box_max)));
   vec3 n = cell_counts(q, cell);
   if (product(n) > max_quadric_cells) {
     cell *= std::cbrt(product(n) / max_quadric_cells);
@@ -415,7 +416,7 @@ struct cube {
 // Kuhn edges join corners whose bit sets nest, so (a & b) is the edge's low
 // end and (a ^ b) its direction, one of 7.
 crossing make_crossing(const cube& c, int a, int b) {
-  assert((a & b) == a || (a & b) == b);
+  BOUNCE_DCHECK((a & b) == a || (a & b) == b);
   const std::int64_t key = c.f[b] == 0.0 ? c.node[b] * 8 + 7 : c.node[a & b] * 8 + (a ^ b) - 1;
   return {key, c.p[a], c.p[b], c.f[a], c.f[b]};
 }
@@ -707,13 +708,13 @@ surface_sample bezier_sample(const std::array<vec3, 16>& control, double u, doub
 
 // Span index and local parameter; the end of the last span stays in it.
 std::pair<int, double> bspline_span(double x, int spans) {
-  assert(std::isfinite(x));
+  BOUNCE_DCHECK(std::isfinite(x));
   const double s = std::clamp(std::floor(x), 0.0, spans - 1.0);
   return {static_cast<int>(s), x - s};
 }
 
 surface_sample bspline_sample(const bspline_surface& b, double u, double v) {
-  assert(b.rows >= 4 && b.cols >= 4 && b.control.size() == static_cast<std::size_t>(b.rows) * b.cols);
+  BOUNCE_CHECK(b.rows >= 4 && b.cols >= 4 && b.control.size() == static_cast<std::size_t>(b.rows) * b.cols);
   const auto [su, tu] = bspline_span(u, b.cols - 3);
   const auto [sv, tv] = bspline_span(v, b.rows - 3);
   const auto at = [&](int r, int c) -> const vec3& { return b.control[(sv + r) * b.cols + su + c]; };
@@ -750,8 +751,8 @@ template <class Sampler>
 void add_parameter_grid(triangle_mesh& m, const std::vector<double>& us, const std::vector<double>& vs, Sampler sample,
                         const vec2& centre, const vec2& uv_scale, int material, std::vector<int>& border) {
   const int nu = static_cast<int>(us.size()), nv = static_cast<int>(vs.size());
-  assert(nu >= 2 && nv >= 2);
-  assert(m.positions.size() + double(nu) * nv < double(std::numeric_limits<int>::max()));
+  BOUNCE_CHECK(nu >= 2 && nv >= 2);
+  BOUNCE_CHECK_LT(m.positions.size() + double(nu) * nv, double(std::numeric_limits<int>::max()));
   const int base = static_cast<int>(m.positions.size());
   const auto id = [&](int i, int j) { return base + j * nu + i; };
   for (int j = 0; j < nv; ++j)
@@ -847,7 +848,7 @@ triangle_mesh triangulate(const polygon_mesh& mesh, std::size_t* dropped) {
     const std::vector<corner> corners = distinct_corners(face);
     std::vector<vec3> points;
     for (const corner& c : corners) {
-      assert(c.position >= 0 && c.position < static_cast<int>(mesh.positions.size()));
+      BOUNCE_DCHECK(c.position >= 0 && c.position < static_cast<int>(mesh.positions.size()));
       points.push_back(mesh.positions[c.position]);
     }
     const vec3 newell = corners.size() >= 3 ? newell_normal(points) : vec3(0.0);
