@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
+#include "base/math_types.h"
 
 namespace bounce {
 

@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "scene/scene.h"
+#include "base/math_types.h"
 
 namespace bounce {
 

@@ -20,11 +20,6 @@ double longest_edge(const patch_mesh& mesh, std::size_t e) {
   return longest;
 }
 
-vec3 centroid(const patch_mesh& mesh, std::size_t e) {
-  const glm::ivec3 t = mesh.elements[e];
-  return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-}
-
 std::uint64_t edge_key(int a, int b) {
   return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
 }
@@ -176,7 +171,7 @@ std::vector<int> emitter_marks(const patch_mesh& mesh, double min_edge) {
     if (emits(mesh, e)) continue;
     const double size = longest_edge(mesh, e);
     if (size <= min_edge) continue;
-    const vec3 c = centroid(mesh, e);
+    const vec3 c = element_centroid(mesh, e);
     for (const emitter& em : emitters) {
       const vec3 d = c - em.center;
       if (glm::dot(em.normal, d) <= 0.0 || glm::dot(mesh.element_normals[e], d) >= 0.0) continue;

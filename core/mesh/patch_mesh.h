@@ -113,6 +113,26 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
 bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min_edge, std::vector<int>& origin,
                        std::string& error, std::span<const int> times = {});
 
+// An element's corners, counter-clockwise seen from the front.
+inline std::array<vec3, 3> element_corners(const patch_mesh& mesh, std::size_t element) {
+  const glm::ivec3 t = mesh.elements[element];
+  return {mesh.positions[std::size_t(t[0])], mesh.positions[std::size_t(t[1])], mesh.positions[std::size_t(t[2])]};
+}
+
+// The mean of an element's corners.
+inline vec3 element_centroid(const patch_mesh& mesh, std::size_t element) {
+  const glm::ivec3 t = mesh.elements[element];
+  return (mesh.positions[std::size_t(t[0])] + mesh.positions[std::size_t(t[1])] + mesh.positions[std::size_t(t[2])]) /
+         3.0;
+}
+
+// The mean over an element's corners of a per-vertex value (its integral
+// over the element, per unit area, when the value is linear across it).
+inline rgb element_mean(const patch_mesh& mesh, const std::vector<rgb>& per_vertex, std::size_t element) {
+  const glm::ivec3 t = mesh.elements[element];
+  return (per_vertex[std::size_t(t[0])] + per_vertex[std::size_t(t[1])] + per_vertex[std::size_t(t[2])]) / 3.0;
+}
+
 // Barycentric coordinates of `point` (projected onto the element's plane).
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point);
 

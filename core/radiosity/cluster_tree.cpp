@@ -17,7 +17,7 @@ void fill_leaf(cluster_node& node, const patch_mesh& mesh, int element) {
   node.element = element;
   node.elements = 1;
   node.area = mesh.element_areas[element];
-  node.centroid = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+  node.centroid = element_centroid(mesh, std::size_t(element));
   node.lo = glm::min(glm::min(mesh.positions[t[0]], mesh.positions[t[1]]), mesh.positions[t[2]]);
   node.hi = glm::max(glm::max(mesh.positions[t[0]], mesh.positions[t[1]]), mesh.positions[t[2]]);
   node.oriented = true;
@@ -75,10 +75,7 @@ struct tree_builder {
   explicit tree_builder(const patch_mesh& m) : mesh(m) {
     const std::size_t n = mesh.element_count();
     centroid.resize(n);
-    for (std::size_t e = 0; e < n; ++e) {
-      const glm::ivec3 t = mesh.elements[e];
-      centroid[e] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-    }
+    for (std::size_t e = 0; e < n; ++e) centroid[e] = element_centroid(mesh, e);
   }
 
   cluster_tree build(pending_node root, std::vector<int>* node_of_old) {

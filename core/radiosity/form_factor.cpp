@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "base/parallel.h"
+#include "base/random_stream.h"
 #include "radiosity/mirror_images.h"
 #include "radiosity/occlusion.h"
 
@@ -45,19 +46,9 @@ double contour_integral(const vec3& p, const vec3& n, const vec3* polygon, int k
   return std::abs(sum) / (2.0 * pi);
 }
 
-// splitmix64: a tiny, good hash, so each (seed, vertex, element) pair has
-// its own reproducible jitter whatever the order of the shots.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-struct pair_random {
-  std::uint64_t state;
-  double next() { return double((state = mix(state)) >> 11) * 0x1.0p-53; }
-};
+// Each (seed, vertex, element) pair has its own reproducible jitter
+// (hash_chain), whatever the order of the shots.
+using pair_random = hash_chain;
 
 // Stratified points on a triangle: an m x m grid of jittered cells in the
 // unit square, mapped to the triangle with the area-preserving sqrt warp.
@@ -65,7 +56,7 @@ void stratified_points(const vec3& a, const vec3& b, const vec3& c, int m, pair_
   int i = 0;
   for (int y = 0; y < m; ++y)
     for (int x = 0; x < m; ++x) {
-      const double u = (x + random.next()) / m, v = (y + random.next()) / m;
+      const double u = (x + random.uniform()) / m, v = (y + random.uniform()) / m;
       const double su = std::sqrt(u);
       out[i++] = a * (1.0 - su) + b * (su * (1.0 - v)) + c * (su * v);
     }
@@ -151,7 +142,7 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, const sho
   // their indices coincide, so both paths give identical form factors.
   std::uint64_t shooter_id = std::uint64_t(from.element >= 0 ? from.element : from.patch);
   for (int i = 0; i < from.through.count; ++i)
-    shooter_id = mix(shooter_id ^ std::uint64_t(from.through.mirrors[i] + 1));
+    shooter_id = mix64(shooter_id ^ std::uint64_t(from.through.mirrors[i] + 1));
   const int grid = std::clamp(int(std::ceil(std::sqrt(double(std::max(context.params.shadow_rays, 1))) - 1e-9)), 1, 8);
   const raycast_query query{context, grid, from.through};
   std::atomic<std::uint64_t> total_rays{0};
@@ -172,7 +163,7 @@ std::uint64_t raycast_form_factors(const form_factor_context& context, const sho
         if (!visibility.empty()) visibility[i] = facing_away;
         continue;
       }
-      pair_random random{mix(context.params.seed ^ mix(v * 0x100000001B3ull ^ shooter_id))};
+      pair_random random{mix64(context.params.seed ^ mix64(v * 0x100000001B3ull ^ shooter_id))};
       out[i] = query.evaluate(p, mesh.normals[v], a, b, c, shooter_normal, 0, random, rays);
       if (!visibility.empty()) {
         const double unoccluded = point_polygon_form_factor(p, mesh.normals[v], triangle);

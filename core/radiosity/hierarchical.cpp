@@ -15,6 +15,7 @@
 
 #include "base/check.h"
 #include "base/parallel.h"
+#include "base/random_stream.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/occlusion.h"
 #include "radiosity/point_lights.h"
@@ -22,26 +23,6 @@
 
 namespace bounce {
 namespace {
-
-double channel_sum_of(const rgb& c) {
-  return c.r + c.g + c.b;
-}
-
-double channel_max(const rgb& c) {
-  return std::max(c.r, std::max(c.g, c.b));
-}
-
-std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
-double uniform(std::uint64_t& state) {
-  state = mix(state);
-  return double(state >> 11) * 0x1.0p-53;
-}
 
 // Irradiance on an oriented surface of normal n from six direction bins.
 rgb from_bins(const std::array<rgb, 6>& bins, const vec3& n) {
@@ -397,8 +378,8 @@ float visibility(refine_context& ctx, int i, int j, int count, int c = -1) {
   // Leaves are keyed by element, so that the element-level solution casts the same rays.
   const std::uint64_t key_i = r.leaf() ? std::uint64_t(r.element) : (1ull << 40) + std::uint64_t(i);
   const std::uint64_t key_j = s.leaf() ? std::uint64_t(s.element) : (1ull << 40) + std::uint64_t(j);
-  const std::uint64_t key = chain ? key_j ^ mix(std::uint64_t(c)) : key_j;
-  std::uint64_t state = mix(solver.params.seed ^ mix(key_i * 0x100000001b3ull ^ mix(key)));
+  const std::uint64_t key = chain ? key_j ^ mix64(std::uint64_t(c)) : key_j;
+  hash_chain random{mix64(solver.params.seed ^ mix64(key_i * 0x100000001b3ull ^ mix64(key)))};
   // Each pair counts by what it would carry (the cosines at both ends):
   // pairs that face away from each other carry nothing, and would
   // otherwise count the back of a box as a shadow.
@@ -406,8 +387,8 @@ float visibility(refine_context& ctx, int i, int j, int count, int c = -1) {
   int open_rays = 0;
   for (int k = 0; k < count; ++k) {
     // Stratified along the first coordinate of both ends.
-    const double u1 = (k + uniform(state)) / count, v1 = uniform(state);
-    const double u2 = (((k * 7 + 3) % count) + uniform(state)) / count, v2 = uniform(state);
+    const double u1 = (k + random.uniform()) / count, v1 = random.uniform();
+    const double u2 = (((k * 7 + 3) % count) + random.uniform()) / count, v2 = random.uniform();
     const surface_point p = sample_node(solver.tree, *solver.mesh, i, u1, v1);
     surface_point q = sample_node(solver.tree, *solver.mesh, j, u2, v2);
     if (chain) q = {chain->image(q.position), chain->image_direction(q.normal)};
@@ -682,10 +663,10 @@ bool scene_is_closed(const hierarchical_solver& solver) {
       const vec3 n = leaf.normal;
       const vec3 a = glm::normalize(std::abs(n.x) > 0.9 ? glm::cross(n, vec3(0, 1, 0)) : glm::cross(n, vec3(1, 0, 0)));
       const vec3 c = glm::cross(n, a);
-      std::uint64_t state = mix(solver.params.seed + el);
+      hash_chain random{mix64(solver.params.seed + el)};
       for (int r = 0; r < 8; ++r) {
         // Cosine-distributed directions.
-        const double u = (r + uniform(state)) / 8.0, phi = 2.0 * std::numbers::pi * uniform(state);
+        const double u = (r + random.uniform()) / 8.0, phi = 2.0 * std::numbers::pi * random.uniform();
         const double s = std::sqrt(u);
         const vec3 dir = n * std::sqrt(std::max(0.0, 1.0 - u)) + a * (s * std::cos(phi)) + c * (s * std::sin(phi));
         const vec3 from = leaf.centroid + n * solver.context.offset;
@@ -1148,7 +1129,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   // than is emitted, and each link's share of it is what matters.
   double leaving = 0.0;
   for (std::size_t e = 0; e < solver.radiosity.size(); ++e)
-    leaving += std::max(0.0, channel_sum_of(solver.radiosity[e])) * solver.mesh->element_areas[e];
+    leaving += std::max(0.0, channel_sum(solver.radiosity[e])) * solver.mesh->element_areas[e];
   const double power = std::max(leaving, solver.emitted_power) / 3.0;
   refine_context ctx{solver, node_b, tolerance * power, out, count, rays, limit_hit, marks};
   if (solver.links.empty()) {

@@ -357,11 +357,6 @@ bool step_radiosity(radiosity_state& state) {
 
 namespace {
 
-rgb element_mean(const patch_mesh& mesh, const std::vector<rgb>& radiosity, std::size_t e) {
-  const glm::ivec3 t = mesh.elements[e];
-  return (radiosity[t[0]] + radiosity[t[1]] + radiosity[t[2]]) / 3.0;
-}
-
 bool same_triangle(const std::array<vec3, 3>& a, const std::array<vec3, 3>& b) {
   return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }

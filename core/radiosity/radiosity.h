@@ -180,11 +180,6 @@ struct radiosity_snapshot {
 };
 std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state);
 
-// Sum over channels, the scalar used to pick shooters and report fractions.
-inline double channel_sum(const rgb& c) {
-  return c.r + c.g + c.b;
-}
-
 // ---- template implementation ----
 
 template <typename callback>

@@ -15,14 +15,6 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-bool positive(const rgb& c) {
-  return c.r > 0.0 || c.g > 0.0 || c.b > 0.0;
-}
-
-double mean_channel(const rgb& c) {
-  return (c.r + c.g + c.b) / 3.0;
-}
-
 // Barycentric coordinates of a uniform point on a triangle (sqrt warp).
 vec3 uniform_barycentric(double u1, double u2) {
   const double su = std::sqrt(u1);
@@ -63,14 +55,14 @@ class path_tracer {
       const bool planar = c_.mirrors && c_.mirrors->element_mirror[std::size_t(e)];
       if (!counts && !planar && events > 0 && front) {
         const material& here = s_.materials[std::size_t(mesh_.element_materials[std::size_t(e)])];
-        if (!positive(here.kr) && !positive(here.kt)) {  // diffuse, by planar mirrors alone
+        if (!any_positive(here.kr) && !any_positive(here.kt)) {  // diffuse, by planar mirrors alone
           tally.imaged += power;
           return;
         }
       }
       if (events > 0 && front && counts) {
         const rgb rho = (mesh_.vertex_rho[t[0]] + mesh_.vertex_rho[t[1]] + mesh_.vertex_rho[t[2]]) / 3.0;
-        if (positive(rho)) {
+        if (any_positive(rho)) {
           out.deposits.push_back({e, b, power});
           tally.deposited += power;
         }
@@ -82,7 +74,7 @@ class path_tracer {
       if (glm::dot(normal, face) < 0.0) normal = -normal;
       const vec3 n = front ? normal : -normal, n_face = front ? face : -face;  // facing the light
       const specular_event event = specular_split(m, d, n, front);
-      double p_mirror = mean_channel(event.kr), p_transmit = event.refracted ? mean_channel(event.kt) : 0.0;
+      double p_mirror = channel_mean(event.kr), p_transmit = event.refracted ? channel_mean(event.kt) : 0.0;
       const double sum = p_mirror + p_transmit;
       const bool normalise = sum > 1.0 + 1e-12;
       if (normalise) {
@@ -141,7 +133,7 @@ class path_tracer {
 
 bool has_specular_materials(const scene& s) {
   return std::any_of(s.materials.begin(), s.materials.end(),
-                     [](const material& m) { return positive(m.kr) || positive(m.kt); });
+                     [](const material& m) { return any_positive(m.kr) || any_positive(m.kt); });
 }
 
 std::shared_ptr<const specular_surfaces> find_specular_surfaces(const scene& s, const patch_mesh& mesh,
@@ -149,7 +141,7 @@ std::shared_ptr<const specular_surfaces> find_specular_surfaces(const scene& s, 
   auto out = std::make_shared<specular_surfaces>();
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const material& m = s.materials[std::size_t(mesh.element_materials[e])];
-    if (!positive(m.kr) && !positive(m.kt)) continue;
+    if (!any_positive(m.kr) && !any_positive(m.kt)) continue;
     (mirrors && mirrors->element_mirror[e] ? out->planar_mirror_elements : out->elements).push_back(int(e));
   }
   if (out->elements.empty()) return nullptr;  // planar mirrors alone: the images carry all
@@ -316,7 +308,7 @@ std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_c
   std::vector<double> power(mesh.patch_count(), 0.0);
   double total = 0.0;
   for (std::size_t p = 0; p < mesh.patch_count() && p < radiosity.size(); ++p)
-    if (positive(radiosity[p])) {
+    if (any_positive(radiosity[p])) {
       order.push_back(int(p));
       power[p] = (radiosity[p].r + radiosity[p].g + radiosity[p].b) * mesh.patch_areas[p];
       total += power[p];

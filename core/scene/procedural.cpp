@@ -13,24 +13,17 @@
 #include <vector>
 
 #include "base/check.h"
+#include "base/random_stream.h"
 
 namespace bounce {
 namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// splitmix64's finaliser: a fixed integer hash, the same on every platform.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
 // A number in [0, 1) that depends only on its arguments.
 double hash01(std::uint64_t a, std::uint64_t b, std::uint64_t c = 0, std::uint64_t d = 0) {
-  const std::uint64_t h = mix(a ^ mix(b ^ mix(c ^ mix(d))));
-  return double(h >> 11) * 0x1.0p-53;
+  const std::uint64_t h = mix64(a ^ mix64(b ^ mix64(c ^ mix64(d))));
+  return unit_interval(h);
 }
 
 // A point of a surface of revolution's profile: radius and height, and the

@@ -11,13 +11,9 @@
 #include <variant>
 #include <vector>
 
-#include <glm/glm.hpp>
+#include "base/math_types.h"
 
 namespace bounce {
-
-using vec2 = glm::dvec2;
-using vec3 = glm::dvec3;
-using rgb = glm::dvec3;
 
 enum class texture_kind { image, checker };
 

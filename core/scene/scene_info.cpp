@@ -29,7 +29,7 @@ std::string summarize_scene(const scene& s, double max_edge, scene_summary& out)
   out.sky = s.sky.on();
   out.bounds = scene_bounds(s);
 
-  auto emits = [&](int m) { return glm::any(glm::greaterThan(s.materials[m].ke, rgb(0.0))); };
+  auto emits = [&](int m) { return any_positive(s.materials[m].ke); };
   std::set<int> emitting;
   double estimate = 0.0;  // in double: a tiny max edge overflows any integer
   for (const surface& surf : s.surfaces) {

@@ -492,7 +492,7 @@ void warn_unreachable_emitters(const scene& s, load_report& report) {
       if (in_front(of.mesh->positions[i], f)) return true;
     return false;
   };
-  auto emits = [&](int material) { return glm::any(glm::greaterThan(s.materials[material].ke, rgb(0.0))); };
+  auto emits = [&](int material) { return any_positive(s.materials[material].ke); };
   std::size_t emitting_faces = 0;
   for (const face_ref& f : faces) emitting_faces += emits(f.face->material) ? 1 : 0;
   // A scene of many emitting faces is not checked: the test is quadratic.

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/random_stream.h"
+
 namespace bounce {
 
 rgb sky_radiance(const sky_light& sky, const vec3& dir) {
@@ -24,15 +26,8 @@ rgb open_sky_irradiance(const sky_light& sky) {
 vec3 stratified_cosine_direction(const vec3& n, int k, int count, std::uint64_t seed) {
   const int side = std::max(1, int(std::sqrt(double(count))));
   // One jittered sample in each of side x side strata of the unit square.
-  auto unit = [](std::uint64_t x) {
-    x ^= x >> 33;
-    x *= 0xff51afd7ed558ccdull;
-    x ^= x >> 33;
-    x *= 0xc4ceb9fe1a85ec53ull;
-    x ^= x >> 33;
-    return double(x >> 11) * 0x1.0p-53;
-  };
-  const std::uint64_t key = seed * 0x9e3779b97f4a7c15ull + std::uint64_t(k);
+  auto unit = [](std::uint64_t x) { return unit_interval(murmur_mix64(x)); };
+  const std::uint64_t key = seed * golden_gamma + std::uint64_t(k);
   const double u = ((k % side) + unit(key)) / side;
   const double v = (((k / side) % side) + unit(key ^ 0x632be59bd9b4e019ull)) / side;
   // Malley: uniform on the disc, lifted to the hemisphere.

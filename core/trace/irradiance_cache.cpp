@@ -6,18 +6,16 @@
 #include <numbers>
 #include <vector>
 
+#include "base/random_stream.h"
+
 namespace bounce {
 namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// splitmix64 finaliser: a jitter in [0, 1) from a seed and a cell.
+// A jitter in [0, 1) from a seed and a cell.
 double jitter(std::uint64_t seed, std::uint64_t k) {
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (k + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return double(z >> 11) * 0x1p-53;
+  return unit_interval(mix64(seed + golden_gamma * k));
 }
 
 // Ward & Heckbert's translation gradient, in the form Krivanek & Gautron

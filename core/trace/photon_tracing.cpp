@@ -20,14 +20,6 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-double mean_channel(const rgb& c) {
-  return (c.r + c.g + c.b) / 3.0;
-}
-
-bool positive(const rgb& c) {
-  return glm::any(glm::greaterThan(c, rgb(0.0)));
-}
-
 vec3 cosine_direction(const vec3& n, double u1, double u2) {
   // Orthonormal basis around n (Duff et al. 2017).
   const double sign = std::copysign(1.0, n.z);
@@ -113,7 +105,7 @@ void add(photon_stats& to, const photon_stats& from) {
 }
 
 bool emits(const scene& s, const surface& surf) {
-  auto lit = [&](int material) { return positive(s.materials[std::size_t(material)].ke); };
+  auto lit = [&](int material) { return any_positive(s.materials[std::size_t(material)].ke); };
   return std::visit(
       [&](const auto& g) {
         if constexpr (std::is_same_v<std::decay_t<decltype(g)>, polygon_mesh>)
@@ -158,7 +150,7 @@ class photon_tracer {
         return;
       }
       const photon_hit ph = describe(s_, *hit, d);
-      const bool diffuse = positive(ph.rho);
+      const bool diffuse = any_positive(ph.rho);
       const bool store = diffuse && specular > 0;  // L S+ D
       if (store) {
         out.photons.push_back({hit->point, -d, power, ph.n, ph.surface});
@@ -168,7 +160,7 @@ class photon_tracer {
       // Russian roulette on the specular weights (mean over channels): the
       // surviving photon keeps its power (for grey weights), so stored
       // photons all carry about the emitted photons' power.
-      double p_mirror = mean_channel(ph.kr), p_transmit = ph.refracted ? mean_channel(ph.kt) : 0.0;
+      double p_mirror = channel_mean(ph.kr), p_transmit = ph.refracted ? channel_mean(ph.kt) : 0.0;
       const double sum = p_mirror + p_transmit;
       const bool normalise =
           sum > 1.0 + 1e-12;  // not for valid materials (rho + kr + kt <= 1); Fresnel's split rounds off
@@ -229,14 +221,14 @@ caustic_result caustic_photons(const scene& s, const ray_scene& rays, const phot
     constexpr int n = 4096;
     rgb sum(0.0);
     for (int i = 0; i < n; ++i) sum += rays.sample_emitter((i + 0.5) / n, 0.5).radiance;
-    const double power = pi * mean_channel(sum / double(n)) * rays.emitter_area();
+    const double power = pi * channel_mean(sum / double(n)) * rays.emitter_area();
     if (power > 0.0) {
       sources.push_back({-1, 0, 0, rgb(0.0)});
       shares.push_back(power);
     }
   }
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
-    const double power = 4.0 * pi * mean_channel(s.lights[i].intensity);
+    const double power = 4.0 * pi * channel_mean(s.lights[i].intensity);
     if (power <= 0.0) continue;
     sources.push_back({int(i), 0, 0, rgb(0.0)});
     shares.push_back(power);
@@ -301,8 +293,8 @@ rgb photon_power_imbalance(const photon_stats& st) {
 }
 
 double caustic_power_fraction(const photon_stats& st) {
-  const double emitted = mean_channel(st.emitted_power);
-  return emitted > 0.0 ? mean_channel(st.stored_power) / emitted : 0.0;
+  const double emitted = channel_mean(st.emitted_power);
+  return emitted > 0.0 ? channel_mean(st.stored_power) / emitted : 0.0;
 }
 
 }  // namespace bounce

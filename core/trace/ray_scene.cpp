@@ -271,7 +271,7 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
 }
 
 void ray_scene::embree_state::add_emitters(const bounce::scene& s, const geometry& g) {
-  auto emitting = [&](int material) { return glm::any(glm::greaterThan(s.materials[material].ke, rgb(0.0))); };
+  auto emitting = [&](int material) { return any_positive(s.materials[material].ke); };
   if (g.shape) {
     if (!g.shape->is_sphere || !emitting(g.shape->ball.material)) return;
     emitter e;

@@ -44,14 +44,6 @@ double power_heuristic(double chosen, double other) {
   return chosen * chosen / (chosen * chosen + other * other);
 }
 
-double max_channel(const rgb& c) {
-  return std::max({c.r, c.g, c.b});
-}
-
-double mean_channel(const rgb& c) {
-  return (c.r + c.g + c.b) / 3.0;
-}
-
 // Orthonormal basis around n (Duff et al. 2017).
 void basis(const vec3& n, vec3& t, vec3& b) {
   const double sign = std::copysign(1.0, n.z);
@@ -81,10 +73,6 @@ struct cache_point {
   double footprint = 0.0;  // a pixel's width at the point's distance along the eye path
   int pixel = 0, index = 0;
 };
-
-bool positive(const rgb& c) {
-  return glm::any(glm::greaterThan(c, rgb(0.0)));
-}
 
 // What a hit offers for shading, on the side the ray arrived from.
 struct surface_point {
@@ -216,7 +204,7 @@ class tracer {
   // Normalised Phong lobe, (n + 2) / (2 pi) cos^n of the angle between the
   // light's mirror direction and the viewer.
   rgb phong(const surface_point& sp, const vec3& to_light, const vec3& to_viewer) const {
-    if (sp.mat->shininess <= 0.0 || !glm::any(glm::greaterThan(sp.mat->specular, rgb(0.0)))) return rgb(0.0);
+    if (sp.mat->shininess <= 0.0 || !any_positive(sp.mat->specular)) return rgb(0.0);
     const double c = glm::dot(reflect(-to_light, sp.n), to_viewer);
     if (c <= 0.0) return rgb(0.0);
     return sp.mat->specular * (sp.mat->shininess + 2.0) / (2.0 * pi) * std::pow(c, sp.mat->shininess);
@@ -296,8 +284,8 @@ class tracer {
     if (sp.front && final_gather_) {
       // Two-pass with a final gather: direct light by shadow rays, caustics
       // from the photons, and the rest of the diffuse light from the cache.
-      const bool diffuse = positive(sp.rho);
-      const bool shiny = sp.mat->shininess > 0.0 && positive(sp.mat->specular);
+      const bool diffuse = any_positive(sp.rho);
+      const bool shiny = sp.mat->shininess > 0.0 && any_positive(sp.mat->specular);
       if (diffuse || shiny) {
         rgb irradiance(0.0), highlight(0.0);
         direct_light(sp, -d, p_.light_samples, rng, c, irradiance, highlight);
@@ -311,8 +299,8 @@ class tracer {
         radiance += sp.rho / pi * indirect_irradiance(sp, rng, c);
       }
     } else if (sp.front) {
-      const bool diffuse = glm::any(glm::greaterThan(sp.rho, rgb(0.0)));
-      const bool shiny = sp.mat->shininess > 0.0 && glm::any(glm::greaterThan(sp.mat->specular, rgb(0.0)));
+      const bool diffuse = any_positive(sp.rho);
+      const bool shiny = sp.mat->shininess > 0.0 && any_positive(sp.mat->specular);
       const bool solution = field_ && p_.diffuse != diffuse_source::ambient;
       const bool traced_direct = !solution || p_.diffuse == diffuse_source::traced_direct;
       if ((diffuse && traced_direct) || shiny) {
@@ -333,12 +321,12 @@ class tracer {
     }
 
     if (depth + 1 >= p_.max_depth) return radiance;
-    if (max_channel(weight * sp.kr) > p_.min_weight) {
+    if (channel_max(weight * sp.kr) > p_.min_weight) {
       ++c.secondary;
       radiance +=
           sp.kr * whitted(hit->point + offset_ * sp.n_face, reflect(d, sp.n), depth + 1, weight * sp.kr, rng, c);
     }
-    if (sp.refracted && max_channel(weight * sp.kt) > p_.min_weight) {
+    if (sp.refracted && channel_max(weight * sp.kt) > p_.min_weight) {
       ++c.secondary;
       radiance += sp.kt * whitted(hit->point - offset_ * sp.n_face, *sp.refracted, depth + 1, weight * sp.kt, rng, c);
     }
@@ -366,9 +354,9 @@ class tracer {
       }
       if (depth == 0) out.distance = hit->t;
       const surface_point sp = describe(*hit, d);
-      if (sp.front && positive(sp.mat->ke) && !rays_.is_sampled_emitter(sp.hit.surface))
+      if (sp.front && any_positive(sp.mat->ke) && !rays_.is_sampled_emitter(sp.hit.surface))
         out.radiance += throughput * sp.mat->ke;
-      if (positive(sp.rho)) {
+      if (any_positive(sp.rho)) {
         const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point, sp.n_face);
         if (depth > 0 && caustics_ && sp.front) {
           // Seen through a mirror or a lens, a small patch of surface
@@ -385,7 +373,7 @@ class tracer {
         }
       }
       if (depth + 1 >= p_.max_depth) return out;
-      const double p_mirror = mean_channel(sp.kr), p_transmit = sp.refracted ? mean_channel(sp.kt) : 0.0;
+      const double p_mirror = channel_mean(sp.kr), p_transmit = sp.refracted ? channel_mean(sp.kt) : 0.0;
       const double pick = rng.uniform() * std::max(1.0, p_mirror + p_transmit);
       if (pick < p_mirror) {
         throughput *= sp.kr / p_mirror;
@@ -420,13 +408,13 @@ class tracer {
     if (!hit) return;
     const surface_point sp = describe(*hit, d);
     const double travelled = length + hit->t;
-    if (sp.front && positive(sp.rho))
+    if (sp.front && any_positive(sp.rho))
       out.push_back({hit->point, sp.n, sp.n_face, travelled * pixel_angle_, pixel, int(out.size())});
     if (depth + 1 >= p_.max_depth) return;
-    if (max_channel(weight * sp.kr) > p_.min_weight)
+    if (channel_max(weight * sp.kr) > p_.min_weight)
       shading_points(hit->point + offset_ * sp.n_face, reflect(d, sp.n), depth + 1, weight * sp.kr, travelled, pixel,
                      out);
-    if (sp.refracted && max_channel(weight * sp.kt) > p_.min_weight)
+    if (sp.refracted && channel_max(weight * sp.kt) > p_.min_weight)
       shading_points(hit->point - offset_ * sp.n_face, *sp.refracted, depth + 1, weight * sp.kt, travelled, pixel, out);
   }
 
@@ -447,7 +435,7 @@ class tracer {
         break;
       }
       const surface_point sp = describe(*hit, d);
-      if (sp.front && glm::any(glm::greaterThan(sp.mat->ke, rgb(0.0)))) {
+      if (sp.front && any_positive(sp.mat->ke)) {
         // Emitters that next-event estimation samples share the diffuse
         // bounce's share with it (MIS); the rest count in full.
         double weight = 1.0;
@@ -459,8 +447,8 @@ class tracer {
       }
       if (bounce + 1 >= p_.max_path) break;
 
-      const double p_diffuse = mean_channel(sp.rho), p_mirror = mean_channel(sp.kr),
-                   p_transmit = sp.refracted ? mean_channel(sp.kt) : 0.0;
+      const double p_diffuse = channel_mean(sp.rho), p_mirror = channel_mean(sp.kr),
+                   p_transmit = sp.refracted ? channel_mean(sp.kt) : 0.0;
       const double total = p_diffuse + p_mirror + p_transmit;
       if (total <= 0.0) break;
       if (p_diffuse > 0.0) {
@@ -488,7 +476,7 @@ class tracer {
       }
       ++c.secondary;
       if (bounce + 1 >= p_.roulette_depth) {
-        const double survive = std::min(0.95, max_channel(throughput));
+        const double survive = std::min(0.95, channel_max(throughput));
         if (survive <= 0.0 || rng.uniform() >= survive) break;
         throughput /= survive;
       }
@@ -517,7 +505,7 @@ class tracer {
 
 long default_caustic_photons(const scene& s, integrator method) {
   const bool specular = std::any_of(s.materials.begin(), s.materials.end(),
-                                    [](const material& m) { return positive(m.kr) || positive(m.kt); });
+                                    [](const material& m) { return any_positive(m.kr) || any_positive(m.kt); });
   if (!specular) return 0;
   return method == integrator::ppm ? 200000 : 500000;
 }
