@@ -11,7 +11,7 @@
 #include "console.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/occlusion.h"
+#include "radiosity/transfer/occlusion.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/reference_solver.h"
 #include "scene/ply.h"

@@ -6,7 +6,7 @@
 #include <tbb/global_control.h>
 
 #include "console.h"
-#include "radiosity/specular_paths.h"
+#include "radiosity/transfer/specular_paths.h"
 
 namespace bounce {
 namespace {

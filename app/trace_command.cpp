@@ -14,7 +14,7 @@
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 #include "scene/camera_math.h"
 #include "scene/obj_io.h"
 #include "scene/scene_info.h"

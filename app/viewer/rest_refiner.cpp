@@ -5,7 +5,7 @@
 
 #include <tbb/task_arena.h>
 
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 
 namespace bounce {
 

@@ -6,7 +6,7 @@
 
 #include "image/image_metrics.h"
 #include "measure/run_clock.h"
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 
 namespace bounce {
 

@@ -17,9 +17,9 @@
 #include "base/parallel.h"
 #include "base/random_stream.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/occlusion.h"
-#include "radiosity/point_lights.h"
-#include "radiosity/specular_paths.h"
+#include "radiosity/transfer/occlusion.h"
+#include "radiosity/transfer/point_lights.h"
+#include "radiosity/transfer/specular_paths.h"
 
 namespace bounce {
 namespace {

@@ -51,9 +51,9 @@
 #include <vector>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/cluster_tree.h"
-#include "radiosity/form_factor.h"
-#include "radiosity/mirror_chains.h"
+#include "radiosity/hierarchical/cluster_tree.h"
+#include "radiosity/transfer/form_factor.h"
+#include "radiosity/hierarchical/mirror_chains.h"
 
 namespace bounce {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "base/check.h"
-#include "radiosity/mirror_images.h"
-#include "radiosity/point_lights.h"
+#include "radiosity/transfer/mirror_images.h"
+#include "radiosity/transfer/point_lights.h"
 
 namespace bounce {
 namespace {

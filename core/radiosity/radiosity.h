@@ -24,10 +24,10 @@
 
 #include "mesh/adaptive.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/form_factor.h"
+#include "radiosity/transfer/form_factor.h"
 #include "radiosity/hierarchical.h"
 #include "radiosity/solver_settings.h"
-#include "radiosity/specular_paths.h"
+#include "radiosity/transfer/specular_paths.h"
 
 namespace bounce {
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Dense>
 
-#include "radiosity/point_lights.h"
+#include "radiosity/transfer/point_lights.h"
 
 namespace bounce {
 namespace {

@@ -12,8 +12,8 @@
 #include "base/parallel.h"
 #include "base/random_stream.h"
 #include "scene/texture.h"
-#include "trace/optics.h"
-#include "trace/specular_event.h"
+#include "optics/optics.h"
+#include "optics/specular_event.h"
 
 namespace bounce {
 namespace {

@@ -21,9 +21,9 @@
 #include "scene/sky.h"
 #include "scene/texture.h"
 #include "trace/irradiance_cache.h"
-#include "trace/optics.h"
+#include "optics/optics.h"
 #include "trace/progressive_photons.h"
-#include "trace/specular_event.h"
+#include "optics/specular_event.h"
 
 namespace bounce {
 namespace {

@@ -12,7 +12,7 @@
 #include <functional>
 
 #include "image/image.h"
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 #include "trace/photon_tracing.h"
 #include "trace/ray_scene.h"
 

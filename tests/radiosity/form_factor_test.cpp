@@ -7,7 +7,7 @@
 #include "measure/closed_forms.h"
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
-#include "radiosity/form_factor.h"
+#include "radiosity/transfer/form_factor.h"
 
 namespace bounce {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
-#include "radiosity/cluster_tree.h"
-#include "radiosity/form_factor.h"
+#include "radiosity/hierarchical/cluster_tree.h"
+#include "radiosity/transfer/form_factor.h"
 #include "radiosity/hierarchical.h"
 #include "radiosity/radiosity.h"
 #include "scene/scene_io.h"

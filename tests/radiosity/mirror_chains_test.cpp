@@ -9,9 +9,9 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
-#include "radiosity/mirror_chains.h"
-#include "radiosity/mirror_images.h"
-#include "radiosity/occlusion.h"
+#include "radiosity/hierarchical/mirror_chains.h"
+#include "radiosity/transfer/mirror_images.h"
+#include "radiosity/transfer/occlusion.h"
 #include "scene/two_sided.h"
 
 namespace bounce {

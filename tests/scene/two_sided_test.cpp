@@ -9,7 +9,7 @@
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
 #include "radiosity/radiosity.h"
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 #include "scene/camera_math.h"
 #include "scene/scene_io.h"
 #include "scene/two_sided.h"

@@ -13,7 +13,7 @@
 #include "measure/closed_forms.h"
 #include "mesh_builders.h"
 #include "radiosity/radiosity.h"
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 #include "scene/camera_math.h"
 #include "trace/irradiance_cache.h"
 #include "trace/progressive_photons.h"

@@ -10,7 +10,7 @@
 #include "mesh_builders.h"
 #include "scene/scene_io.h"
 #include "test_files.h"
-#include "trace/optics.h"
+#include "optics/optics.h"
 #include "trace/photon_tracing.h"
 
 namespace bounce {

@@ -10,7 +10,7 @@
 #include "scene/scene_io.h"
 #include "scene/tessellate.h"
 #include "test_files.h"
-#include "trace/optics.h"
+#include "optics/optics.h"
 #include "trace/ray_scene.h"
 
 namespace bounce {

@@ -10,7 +10,7 @@
 #include "image/image_metrics.h"
 #include "mesh_builders.h"
 #include "radiosity/radiosity.h"
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 #include "scene/camera_math.h"
 #include "scene/scene_io.h"
 #include "scene/texture.h"

@@ -1,4 +1,4 @@
-#include "radiosity/radiosity_field.h"
+#include "trace/radiosity_field.h"
 
 #include <algorithm>
 #include <cmath>

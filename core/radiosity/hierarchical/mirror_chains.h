@@ -16,7 +16,7 @@
 
 #include <glm/mat3x3.hpp>
 
-#include "radiosity/mirror_images.h"
+#include "radiosity/transfer/mirror_images.h"
 
 namespace bounce {
 

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "scene/scene.h"
-#include "trace/optics.h"
+#include "optics/optics.h"
 
 namespace bounce {
 

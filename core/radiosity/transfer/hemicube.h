@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <span>
 
-#include "radiosity/form_factor.h"
+#include "radiosity/transfer/form_factor.h"
 
 namespace bounce {
 

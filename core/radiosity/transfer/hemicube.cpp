@@ -9,7 +9,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "radiosity/hemicube.h"
+#include "radiosity/transfer/hemicube.h"
 
 namespace bounce {
 namespace {

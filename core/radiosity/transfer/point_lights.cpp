@@ -1,4 +1,4 @@
-#include "radiosity/point_lights.h"
+#include "radiosity/transfer/point_lights.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,6 +1,6 @@
-#include "radiosity/form_factor.h"
+#include "radiosity/transfer/form_factor.h"
 
-#include "radiosity/hemicube.h"
+#include "radiosity/transfer/hemicube.h"
 
 #include <algorithm>
 #include <array>
@@ -9,8 +9,8 @@
 
 #include "base/parallel.h"
 #include "base/random_stream.h"
-#include "radiosity/mirror_images.h"
-#include "radiosity/occlusion.h"
+#include "radiosity/transfer/mirror_images.h"
+#include "radiosity/transfer/occlusion.h"
 
 namespace bounce {
 namespace {

@@ -1,4 +1,4 @@
-#include "radiosity/occlusion.h"
+#include "radiosity/transfer/occlusion.h"
 
 #include <atomic>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "radiosity/cluster_tree.h"
+#include "radiosity/hierarchical/cluster_tree.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "radiosity/specular_paths.h"
+#include "radiosity/transfer/specular_paths.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 
 #include "base/parallel.h"
 #include "base/random_stream.h"
-#include "radiosity/mirror_images.h"
-#include "radiosity/occlusion.h"
-#include "trace/specular_event.h"
+#include "radiosity/transfer/mirror_images.h"
+#include "radiosity/transfer/occlusion.h"
+#include "optics/specular_event.h"
 
 namespace bounce {
 namespace {

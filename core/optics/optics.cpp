@@ -1,4 +1,4 @@
-#include "trace/optics.h"
+#include "optics/optics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "radiosity/mirror_images.h"
+#include "radiosity/transfer/mirror_images.h"
 
 #include <algorithm>
 #include <atomic>
@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "base/parallel.h"
-#include "radiosity/occlusion.h"
+#include "radiosity/transfer/occlusion.h"
 
 namespace bounce {
 namespace {

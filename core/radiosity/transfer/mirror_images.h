@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/form_factor.h"
+#include "radiosity/transfer/form_factor.h"
 
 namespace bounce {
 

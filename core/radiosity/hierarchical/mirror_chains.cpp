@@ -1,4 +1,4 @@
-#include "radiosity/mirror_chains.h"
+#include "radiosity/hierarchical/mirror_chains.h"
 
 #include <algorithm>
 #include <array>
