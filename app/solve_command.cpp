@@ -11,9 +11,9 @@
 #include "console.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/transfer/occlusion.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/reference_solver.h"
+#include "radiosity/transfer/occlusion.h"
 #include "scene/ply.h"
 #include "solver_stats.h"
 
@@ -84,13 +84,13 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     const hierarchical_solver& h = *state->hierarchy;
     say("done: hierarchical, %llu steps, residual %.6f%%, %.3f s, %zu links (%.1f MiB) at tolerance %.1e, "
         "%llu rays, %zu tree nodes%s\n",
-        static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds, h.links.size(),
-        double(h.links.size() * sizeof(hierarchy_link)) / (1 << 20), h.progress.tolerance,
-        static_cast<unsigned long long>(st.rays), h.tree.nodes.size(),
+        static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction, st.seconds, h.hierarchy.links.size(),
+        double(h.hierarchy.links.size() * sizeof(hierarchy_link)) / (1 << 20), h.progress.tolerance,
+        static_cast<unsigned long long>(st.rays), h.hierarchy.tree.nodes.size(),
         h.progress.closed ? ", closed scene: form factors normalised" : "");
-    if (!h.mirror_links.empty())
-      say("links through planar mirrors: %zu (%.1f MiB) over %zu mirror chains\n", h.mirror_links.size(),
-          double(h.mirror_links.size() * sizeof(mirror_link)) / (1 << 20), h.chains.size());
+    if (!h.hierarchy.mirror_links.empty())
+      say("links through planar mirrors: %zu (%.1f MiB) over %zu mirror chains\n", h.hierarchy.mirror_links.size(),
+          double(h.hierarchy.mirror_links.size() * sizeof(mirror_link)) / (1 << 20), h.hierarchy.chains.size());
     if (!h.progress.warning.empty()) std::fprintf(stderr, "warning: %s\n", h.progress.warning.c_str());
   } else {
     say("done: %llu shots, unshot %.6f%%, %.3f s, %llu rays (%.2f Mrays/s), power balance error %.2e\n",

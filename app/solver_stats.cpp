@@ -53,17 +53,17 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
   if (state.hierarchy) {
     // The residual stands for the unshot power: what one more iteration would still move.
     const hierarchical_solver& h = *state.hierarchy;
-    out["hierarchical"] = {{"links", h.links.size()},
-                           {"link_bytes", h.links.size() * sizeof(hierarchy_link)},
+    out["hierarchical"] = {{"links", h.hierarchy.links.size()},
+                           {"link_bytes", h.hierarchy.links.size() * sizeof(hierarchy_link)},
                            // Links through chains of planar mirrors (not in "links").
-                           {"mirror_links", h.mirror_links.size()},
-                           {"mirror_chains", h.chains.size()},
+                           {"mirror_links", h.hierarchy.mirror_links.size()},
+                           {"mirror_chains", h.hierarchy.chains.size()},
                            {"link_tolerance", h.progress.tolerance},
                            {"links_final", h.progress.links_final},
                            {"refinements", h.progress.refinements},
                            {"operator_applications", h.progress.operator_applications},
-                           {"tree_nodes", h.tree.nodes.size()},
-                           {"min_edge", h.params.split_elements ? h.min_edge : 0.0},
+                           {"tree_nodes", h.hierarchy.tree.nodes.size()},
+                           {"min_edge", h.params.split_elements ? h.meshes.min_edge : 0.0},
                            {"element_passes", h.progress.element_passes},
                            {"elements_marked", h.progress.split_marks},
                            {"closed_scene", h.progress.closed},

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "base/check.h"
+#include "radiosity/hierarchical/publication.h"
 #include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/point_lights.h"
 
@@ -225,49 +226,20 @@ namespace {
 // The hierarchical solution at the vertices, its residual as the unshot
 // radiosity of the elements, and its progress as statistics.
 void publish_hierarchical(radiosity_state& state) {
-  const hierarchical_solver& h = *state.hierarchy;
-  if (state.mesh != h.mesh) {  // elements were split (or a restart went back to the input mesh)
-    state.mesh = h.mesh;
-    state.refined_mesh = h.refined_mesh;
-    state.form_factors.mesh = h.mesh;  // the same geometry: the occlusion scene stays
-    state.form_factors.vertex_areas.assign(h.mesh->vertex_count(), 0.0);
-    for (std::size_t e = 0; e < h.mesh->element_count(); ++e)
+  hierarchical_solver& h = *state.hierarchy;
+  if (state.mesh != &h.mesh()) {  // elements were split (or a restart went back to the input mesh)
+    state.mesh = &h.mesh();
+    state.refined_mesh = h.meshes.refined;
+    state.form_factors.mesh = state.mesh;  // the same geometry: the occlusion scene stays
+    state.form_factors.vertex_areas.assign(state.mesh->vertex_count(), 0.0);
+    for (std::size_t e = 0; e < state.mesh->element_count(); ++e)
       for (int k = 0; k < 3; ++k)
-        state.form_factors.vertex_areas[h.mesh->elements[e][k]] += h.mesh->element_areas[e] / 3.0;
+        state.form_factors.vertex_areas[state.mesh->elements[e][k]] += state.mesh->element_areas[e] / 3.0;
   }
-  const patch_mesh& mesh = *state.mesh;
-  // Once the final links are solved (the residual below the point where
-  // links would be refined), the final gather: each element's light from
-  // the links of it and its ancestors, the kernel evaluated at the element
-  // itself. Before (or while passes of light through mirrors and glass
-  // are still due), the element solution as it stands.
-  const bool gathered = refinement_done(h) && specular_passes_done(h) && h.residual_fraction <= h.params.refine_below &&
-                        final_gather(*state.hierarchy);
-  if (gathered) {
-    std::vector<rgb> b(h.radiosity.size()), d(h.radiosity.size());
-    for (std::size_t e = 0; e < b.size(); ++e) {
-      b[e] = h.emission[e] + h.lamp[e] + h.gathered[e];
-      d[e] = h.lamp[e] - (h.specular_lamp.empty() ? rgb(0.0) : h.specular_lamp[e]) + h.gathered_direct[e];
-    }
-    state.radiosity = element_to_vertex(mesh, b);
-    state.direct = element_to_vertex(mesh, d);
-  } else {
-    state.radiosity = element_to_vertex(mesh, h.radiosity);
-    state.direct = element_to_vertex(mesh, h.direct);
-  }
-  // The lights' light through mirrors and glass enters B as a
-  // right-hand-side term, and through the links through mirrors: B's
-  // caustic part is that term plus what those links bring from the emitters.
-  state.caustic.clear();
-  if (!h.specular_lamp_input.empty() || !h.mirror_links.empty()) {
-    const std::vector<rgb>& mirrored = gathered ? h.gathered_mirrored : h.mirrored;
-    std::vector<rgb> caustic(mesh.element_count(), rgb(0.0));
-    for (std::size_t e = 0; e < caustic.size(); ++e) {
-      if (!h.specular_lamp_input.empty()) caustic[e] = h.specular_lamp_input[std::size_t(h.input_element[e])];
-      if (e < mirrored.size()) caustic[e] += mirrored[e];
-    }
-    state.caustic = element_to_vertex(mesh, caustic);
-  }
+  vertex_light light = publish_vertex_light(h);
+  state.radiosity = std::move(light.radiosity);
+  state.direct = std::move(light.direct);
+  state.caustic = std::move(light.caustic);
   state.unshot = h.residual;
   state.stats.unshot_fraction = h.residual_fraction;
   // A step of the hierarchical solver (a block of iterations, or links
@@ -276,11 +248,11 @@ void publish_hierarchical(radiosity_state& state) {
   state.stats.shots = h.progress.steps;
   state.stats.refinements = std::uint64_t(std::max(0, h.progress.refinements - 1));
   state.stats.rays = h.progress.rays;
-  state.stats.links = h.links.size();
+  state.stats.links = h.hierarchy.links.size();
   state.stats.link_tolerance = h.progress.tolerance;
-  state.stats.links_final = refinement_done(h) && specular_passes_done(h);
+  state.stats.links_final = solution_final(h);
   state.balance = {};
-  state.balance.emitted = rgb(h.emitted_power / 3.0);
+  state.balance.emitted = rgb(h.sources.emitted_power / 3.0);
 }
 
 }  // namespace

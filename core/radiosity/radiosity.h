@@ -25,7 +25,7 @@
 #include "mesh/adaptive.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/transfer/form_factor.h"
-#include "radiosity/hierarchical.h"
+#include "radiosity/hierarchical/solver.h"
 #include "radiosity/solver_settings.h"
 #include "radiosity/transfer/specular_paths.h"
 

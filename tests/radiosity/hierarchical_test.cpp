@@ -11,7 +11,8 @@
 #include "mesh_builders.h"
 #include "radiosity/hierarchical/cluster_tree.h"
 #include "radiosity/transfer/form_factor.h"
-#include "radiosity/hierarchical.h"
+#include "radiosity/hierarchical/diagnostics.h"
+#include "radiosity/hierarchical/solver.h"
 #include "radiosity/radiosity.h"
 #include "scene/scene_io.h"
 
@@ -78,15 +79,15 @@ TEST(Hierarchical, ConvergesToTheElementLevelSolutionAsTheToleranceFalls) {
     auto state = make_radiosity_state(s, mesh, hierarchical(tolerance));
     solve(*state, 1e-12);
     const hierarchical_solver& h = *state->hierarchy;
-    const double difference = largest_relative_difference(h.radiosity, element_level_solution(h));
+    const double difference = largest_relative_difference(h.light.total, element_level_solution(h));
     EXPECT_LT(difference, previous) << "tolerance " << tolerance;
     previous = difference;
     if (tolerance == 1e-12) {
       EXPECT_LT(difference, 1e-6);
       // Every link is element to element at tolerance 0.
-      for (const hierarchy_link& link : h.links) {
-        ASSERT_TRUE(h.tree.nodes[link.receiver].leaf());
-        ASSERT_TRUE(h.tree.nodes[link.source].leaf());
+      for (const hierarchy_link& link : h.hierarchy.links.links) {
+        ASSERT_TRUE(h.hierarchy.tree.nodes[link.receiver].leaf());
+        ASSERT_TRUE(h.hierarchy.tree.nodes[link.source].leaf());
       }
     }
   }
@@ -113,7 +114,7 @@ TEST(Hierarchical, ManySmallCoplanarTrianglesReceiveWhatTheirPolygonDoes) {
   solve(*state, 1e-9);
   const hierarchical_solver& h = *state->hierarchy;
   double reflected = 0.0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) reflected += h.gathered[e].g * mesh.element_areas[e];
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) reflected += h.gathered.total[e].g * mesh.element_areas[e];
   // What the floor as one polygon receives: Lambert's formula integrated
   // over it (midpoint rule on a 200 x 200 grid, far finer than needed).
   const double exitance = pi * 10.0;
@@ -127,7 +128,7 @@ TEST(Hierarchical, ManySmallCoplanarTrianglesReceiveWhatTheirPolygonDoes) {
   exact *= 0.5 * exitance;
   EXPECT_NEAR(reflected / exact, 1.0, 0.01);
   // The grid is reached through clusters, not element by element.
-  EXPECT_LT(h.links.size(), std::size_t(cells * cells));
+  EXPECT_LT(h.hierarchy.links.size(), std::size_t(cells * cells));
 }
 
 // Whether a floor point lies outside the short block's footprint (the
@@ -158,7 +159,7 @@ TEST(Hierarchical, LinksConcentrateAtContactsAndShadows) {
   int near_count = 0, open_count = 0;
   const hierarchical_solver& h = *state->hierarchy;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const vec3 c = h.tree.nodes[h.tree.leaf_of_element[e]].centroid;
+    const vec3 c = h.hierarchy.tree.nodes[h.hierarchy.tree.leaf_of_element[e]].centroid;
     const vec3 n = mesh.element_normals[e];
     if (n.y > 0.99 && c.y < 1.0 && near_short_block(c)) {
       near_sum += density[e];
@@ -198,7 +199,7 @@ TEST(Hierarchical, ElementsAreSplitOnlyWhereLinksNeedThem) {
   solve(*state, 1e-3);
   const hierarchical_solver& h = *state->hierarchy;
   ASSERT_TRUE(state->refined_mesh);
-  ASSERT_EQ(state->mesh, h.mesh);
+  ASSERT_EQ(state->mesh, &h.mesh());
   const patch_mesh& refined = *state->mesh;
   EXPECT_GT(h.progress.element_passes, 0);
   EXPECT_GT(refined.element_count(), 2 * mesh.element_count());
@@ -214,7 +215,7 @@ TEST(Hierarchical, ElementsAreSplitOnlyWhereLinksNeedThem) {
   double near_area = 0.0, open_area = 0.0;
   int near_count = 0, open_count = 0;
   for (std::size_t e = 0; e < refined.element_count(); ++e) {
-    const vec3 c = h.tree.nodes[h.tree.leaf_of_element[e]].centroid;
+    const vec3 c = h.hierarchy.tree.nodes[h.hierarchy.tree.leaf_of_element[e]].centroid;
     if (refined.element_normals[e].y < 0.99 || c.y > 1.0) continue;
     if (near_short_block(c)) {
       near_area += refined.element_areas[e];
@@ -234,7 +235,7 @@ TEST(Hierarchical, ElementsAreSplitOnlyWhereLinksNeedThem) {
   double wall_area = 0.0;
   int wall_count = 0;
   for (std::size_t e = 0; e < refined.element_count(); ++e) {
-    const vec3 c = h.tree.nodes[h.tree.leaf_of_element[e]].centroid;
+    const vec3 c = h.hierarchy.tree.nodes[h.hierarchy.tree.leaf_of_element[e]].centroid;
     if (refined.element_normals[e].z < -0.99 && c.z > 550.0 && std::abs(c.x - 278.0) < 120.0 &&
         std::abs(c.y - 274.0) < 120.0) {
       wall_area += refined.element_areas[e];
@@ -274,9 +275,9 @@ TEST(Hierarchical, PointLightGivesTheInverseSquareLawAtElementCentres) {
   solve(*state, 1e-12);
   const hierarchical_solver& h = *state->hierarchy;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const vec3 d = s.lights[0].position - h.tree.nodes[h.tree.leaf_of_element[e]].centroid;
-    EXPECT_NEAR(h.radiosity[e].b, 0.5 * 30 * d.y / std::pow(glm::length(d), 3.0), 1e-12);
-    EXPECT_EQ(h.direct[e], h.radiosity[e]);
+    const vec3 d = s.lights[0].position - h.hierarchy.tree.nodes[h.hierarchy.tree.leaf_of_element[e]].centroid;
+    EXPECT_NEAR(h.light.total[e].b, 0.5 * 30 * d.y / std::pow(glm::length(d), 3.0), 1e-12);
+    EXPECT_EQ(h.light.direct[e], h.light.total[e]);
   }
 }
 
@@ -305,8 +306,8 @@ TEST(Hierarchical, AClusterSendsWhatItsElementsFacingTheReceiverSend) {
   const hierarchical_solver& h = *state->hierarchy;
   // Links whose source is a cluster of the cube's faces alone (its box within the cube's).
   std::size_t cluster_links = 0;
-  for (const hierarchy_link& link : h.links) {
-    const cluster_node& source = h.tree.nodes[std::size_t(link.source)];
+  for (const hierarchy_link& link : h.hierarchy.links.links) {
+    const cluster_node& source = h.hierarchy.tree.nodes[std::size_t(link.source)];
     cluster_links += !source.oriented && source.lo.y >= 0.99 && source.hi.y <= 1.21;
   }
   EXPECT_GT(cluster_links, 100u);  // 162 of 1038
@@ -314,8 +315,8 @@ TEST(Hierarchical, AClusterSendsWhatItsElementsFacingTheReceiverSend) {
   // for the top face integrated over the ceiling (midpoint rule, 200 x 200).
   double ceiling = 0.0, floor = 0.0;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const double y = h.tree.nodes[std::size_t(h.tree.leaf_of_element[e])].centroid.y;
-    const double power = h.gathered_direct[e].g / 0.5 * mesh.element_areas[e];  // rho x irradiance from emitters
+    const double y = h.hierarchy.tree.nodes[std::size_t(h.hierarchy.tree.leaf_of_element[e])].centroid.y;
+    const double power = h.gathered.direct[e].g / 0.5 * mesh.element_areas[e];  // rho x irradiance from emitters
     if (y > 1.9) ceiling += power;
     if (y < 0.1) floor += power;
   }
@@ -346,18 +347,18 @@ TEST(Hierarchical, LinksFromInnerNodesCarryTheirSourcesFormFactor) {
   auto state = make_radiosity_state(s, mesh, hierarchical(1e-5));
   solve(*state, 0.01);
   const hierarchical_solver& h = *state->hierarchy;
-  const patch_mesh& m = *h.mesh;
+  const patch_mesh& m = h.mesh();
   auto elements_under = [&](int node, auto&& self, std::vector<int>& out) -> void {
-    const cluster_node& c = h.tree.nodes[std::size_t(node)];
+    const cluster_node& c = h.hierarchy.tree.nodes[std::size_t(node)];
     if (c.leaf()) return out.push_back(c.element);
     for (int k = c.first_child; k < c.first_child + c.child_count; ++k) self(k, self, out);
   };
   double carried = 0.0, disc = 0.0, exact = 0.0;
   std::size_t examined = 0;
-  for (std::size_t l = 0; l < h.links.size(); l += 7) {
-    const hierarchy_link& link = h.links[l];
-    const cluster_node& r = h.tree.nodes[std::size_t(link.receiver)];
-    const cluster_node& source = h.tree.nodes[std::size_t(link.source)];
+  for (std::size_t l = 0; l < h.hierarchy.links.size(); l += 7) {
+    const hierarchy_link& link = h.hierarchy.links.links[l];
+    const cluster_node& r = h.hierarchy.tree.nodes[std::size_t(link.receiver)];
+    const cluster_node& source = h.hierarchy.tree.nodes[std::size_t(link.source)];
     if (source.leaf() || !r.oriented) continue;
     std::vector<int> elements;
     elements_under(link.source, elements_under, elements);
@@ -394,8 +395,8 @@ TEST(Hierarchical, RefinesBetweenIterationsAndPublishesEveryStep) {
     ASSERT_EQ(state->radiosity.size(), mesh.vertex_count());
     const hierarchical_solver& h = *state->hierarchy;
     if (h.progress.tolerance < tolerance) {
-      EXPECT_GE(h.links.size(), links);  // links are only ever split
-      links = h.links.size();
+      EXPECT_GE(h.hierarchy.links.size(), links);  // links are only ever split
+      links = h.hierarchy.links.size();
       tolerance = h.progress.tolerance;
       ++refinements;
     }
@@ -417,7 +418,7 @@ TEST(Hierarchical, LinkCostAndLimit) {
   const hierarchical_solver& h = *state->hierarchy;
   // Past the limit no link is split: the pairs under way when it was hit
   // become links, at most two per node of the tree.
-  EXPECT_LE(h.links.size(), 5000u + 2u * h.tree.nodes.size());
+  EXPECT_LE(h.hierarchy.links.size(), 5000u + 2u * h.hierarchy.tree.nodes.size());
   EXPECT_NE(h.progress.warning.find("link limit"), std::string::npos);
   for (const rgb& b : state->radiosity) ASSERT_TRUE(std::isfinite(b.r) && b.r >= 0.0);
 }
@@ -431,7 +432,7 @@ TEST(Hierarchical, ParallelAndSerialRunsAgree) {
   auto b = make_radiosity_state(s, mesh, hierarchical(1e-5));
   solve(*a, 1e-6);
   solve(*b, 1e-6);
-  ASSERT_EQ(a->hierarchy->links.size(), b->hierarchy->links.size());
+  ASSERT_EQ(a->hierarchy->hierarchy.links.size(), b->hierarchy->hierarchy.links.size());
   EXPECT_LT(largest_relative_difference(a->radiosity, b->radiosity), 1e-12);
 }
 

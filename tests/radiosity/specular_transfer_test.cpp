@@ -14,7 +14,7 @@
 #include "mesh_builders.h"
 #include "radiosity/hierarchical/cluster_tree.h"
 #include "radiosity/transfer/form_factor.h"
-#include "radiosity/hierarchical.h"
+#include "radiosity/hierarchical/solver.h"
 #include "radiosity/transfer/mirror_images.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/transfer/specular_paths.h"
@@ -192,25 +192,25 @@ TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmitters
     auto state = make_radiosity_state(s, mesh, params);
     solve(*state);
     const hierarchical_solver& h = *state->hierarchy;
-    EXPECT_EQ(h.chains.size(), 1u);
-    EXPECT_GT(h.mirror_links.size(), 100u);
+    EXPECT_EQ(h.hierarchy.chains.size(), 1u);
+    EXPECT_GT(h.hierarchy.mirror_links.size(), 100u);
     EXPECT_EQ(h.progress.specular_passes, 0);  // a planar mirror alone: nothing left for the passes
-    EXPECT_EQ(h.gathered_mirrored.size(), mesh.element_count());
+    EXPECT_EQ(h.gathered.mirrored.size(), mesh.element_count());
     EXPECT_EQ(state->caustic.size(), mesh.vertex_count());
     result out;
     double sum = 0.0, expected_sum = 0.0;
-    for (std::size_t e = 0; e < h.gathered_mirrored.size(); ++e) {
-      const cluster_node& leaf = h.tree.nodes[std::size_t(h.tree.leaf_of_element[e])];
+    for (std::size_t e = 0; e < h.gathered.mirrored.size(); ++e) {
+      const cluster_node& leaf = h.hierarchy.tree.nodes[std::size_t(h.hierarchy.tree.leaf_of_element[e])];
       const double r = std::max(std::abs(leaf.centroid.x), std::abs(leaf.centroid.z));
       if (leaf.centroid.y > 1e-9 || r > 1.5 || r < 0.4) continue;  // the floor, off its edge and the lamp's shadow
       const double expected = 0.5 * pi * kr * point_polygon_form_factor(leaf.centroid, leaf.normal, image);
-      out.worst = std::max(out.worst, std::abs(h.gathered_mirrored[e].g / expected - 1.0));
-      sum += h.gathered_mirrored[e].g;
+      out.worst = std::max(out.worst, std::abs(h.gathered.mirrored[e].g / expected - 1.0));
+      sum += h.gathered.mirrored[e].g;
       expected_sum += expected;
     }
     out.total = sum / expected_sum;
     std::printf("tolerance %g: %zu links through the mirror, floor total %.5f of exact, worst element %.4f off\n",
-                tolerance, h.mirror_links.size(), out.total, out.worst);
+                tolerance, h.hierarchy.mirror_links.size(), out.total, out.worst);
     return out;
   };
   // Fine links: every element's light from the lamp's elements by Lambert's formula.
@@ -253,7 +253,7 @@ TEST(SpecularTransfer, LinksThroughAMirrorSplitTheElementsWhereItsLightChanges) 
     params.hierarchical.split_elements = true;
     auto state = make_radiosity_state(s, mesh, params);
     solve(*state);
-    const patch_mesh& solved = *state->hierarchy->mesh;
+    const patch_mesh& solved = state->hierarchy->mesh();
     const double penumbra = mean_area(solved, 0.1, 0.2), open = mean_area(solved, 1.0, 1.5);
     std::printf("%s: %zu elements, mean floor element in the penumbra %.5f, on open floor %.5f\n",
                 links ? "links through the mirror" : "mirror images", solved.element_count(), penumbra, open);
@@ -274,8 +274,8 @@ TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors
   // No passes: the floor's own light back by the mirror is the test below.
   auto state = make_radiosity_state(s, mesh, hierarchical(false, 0));
   solve(*state, 100);
-  ASSERT_FALSE(state->hierarchy->specular_lamp.empty());
-  EXPECT_TRUE(state->hierarchy->mirror_links.empty());
+  ASSERT_FALSE(state->hierarchy->sources.specular_lamp.empty());
+  EXPECT_TRUE(state->hierarchy->hierarchy.mirror_links.empty());
   double sum = 0.0, expected_sum = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const vec3 p = mesh.receive_points[v];
@@ -325,7 +325,7 @@ TEST(SpecularTransfer, HierarchicalSolverPassesDiffuseLightOnThroughMirrors) {
     auto state = make_radiosity_state(s, mesh, hierarchical(links, bounces));
     solve(*state);
     EXPECT_EQ(state->hierarchy->progress.specular_passes, links ? 0 : bounces);
-    EXPECT_EQ(state->hierarchy->mirror_links.empty(), !links);
+    EXPECT_EQ(state->hierarchy->hierarchy.mirror_links.empty(), !links);
     return floor_mean(mesh, state->radiosity);
   };
   const double without = solve_with(false, 0), passes = solve_with(false, 3), links = solve_with(true, 3);

@@ -1,0 +1,119 @@
+#include "radiosity/hierarchical/element_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/check.h"
+#include "radiosity/hierarchical/sources.h"
+#include "radiosity/transfer/form_factor.h"
+
+namespace bounce {
+namespace {
+
+double longest_edge(const patch_mesh& mesh, int element) {
+  const glm::ivec3 t = mesh.elements[std::size_t(element)];
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+    longest =
+        std::max(longest, glm::length(mesh.positions[std::size_t(t[(k + 1) % 3])] - mesh.positions[std::size_t(t[k])]));
+  return longest;
+}
+
+// Per element of the refined mesh, the value its element had.
+template <typename value>
+std::vector<value> carried(const std::vector<value>& old, const std::vector<int>& from) {
+  std::vector<value> out(from.size());
+  for (std::size_t e = 0; e < out.size(); ++e) out[e] = old[std::size_t(from[e])];
+  return out;
+}
+
+}  // namespace
+
+int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>& node_b, double tolerance, int i, int j,
+                      double factor, float visibility, const mirror_chain* chain) {
+  if (!solver.params.split_elements) return 0;
+  const cluster_node& r = solver.hierarchy.tree.nodes[std::size_t(i)];
+  const cluster_node& s = solver.hierarchy.tree.nodes[std::size_t(j)];
+  const patch_mesh& mesh = solver.mesh();
+  const double transfer = r.area * channel_max(node_b[std::size_t(j)]) * (chain ? channel_max(chain->path.kr) : 1.0);
+  if (!(factor * transfer > tolerance)) return 0;  // nothing this pair carries can matter
+  double error = 0.0;
+  if (visibility > 0.0f && visibility < 1.0f) {
+    error = solver.params.partial_factor * factor * transfer;
+  } else if (visibility > 0.0f) {
+    std::array<vec3, 3> polygon = element_corners(mesh, std::size_t(s.element));
+    if (chain)
+      for (vec3& x : polygon) x = chain->image(x);
+    const std::array<vec3, 3> corners = element_corners(mesh, std::size_t(r.element));
+    double lo = factor, hi = factor;
+    for (const vec3& corner : corners) {
+      // Towards the corners, not at them: a corner may touch the source.
+      const vec3 p = r.centroid + 0.75 * (corner - r.centroid);
+      const double f = point_polygon_form_factor(p, r.normal, polygon);
+      if (std::isfinite(f)) {
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+    }
+    error = (hi - lo) * transfer;
+  }
+  const double ratio = error / tolerance;
+  if (!(ratio > 1.0) || !(longest_edge(mesh, r.element) > solver.meshes.min_edge)) return 0;
+  return std::clamp(int(std::ceil(std::log2(ratio))), 1, solver.params.max_bisections);
+}
+
+bool splits_pending(const hierarchical_solver& solver) {
+  return solver.params.split_elements && !solver.split_marks.empty() &&
+         solver.progress.element_passes < solver.params.max_element_passes && solver.progress.warning.empty();
+}
+
+bool split_marked_elements(hierarchical_solver& solver) {
+  if (solver.split_marks.empty()) return false;
+  const std::size_t n = solver.mesh().element_count();
+  BOUNCE_CHECK_EQ(solver.split_marks.size(), n);
+  auto refined = std::make_shared<patch_mesh>(solver.mesh());
+  std::vector<int> marked, times, from;  // from[e]: the element of the current mesh that element e lies in
+  for (std::size_t e = 0; e < n; ++e)
+    if (solver.split_marks[e] > 0) {
+      marked.push_back(int(e));
+      times.push_back(solver.split_marks[e]);
+    }
+  std::string error;
+  bool split = refine_patch_mesh(*refined, marked, solver.meshes.min_edge, from, error, times);
+  if (!split) solver.progress.warning = "element refinement stopped: " + error;
+  split = split && refined->element_count() > n;
+  solver.split_marks.clear();
+  ++solver.progress.element_passes;
+  if (!split) return false;
+  BOUNCE_CHECK_EQ(from.size(), refined->element_count());
+
+  // The old tree continues with subtrees over the pieces, so the links
+  // stay (renumbered); the next link refinement splits those that the
+  // pieces now allow. Each piece keeps its element's radiosity: the
+  // piecewise-constant solution is unchanged, and iterating goes on from it.
+  link_hierarchy& h = solver.hierarchy;
+  std::vector<int> node_of_old;
+  cluster_tree tree = extend_cluster_tree(h.tree, *refined, from, node_of_old);
+  link_table<hierarchy_link> links = std::move(h.links);
+  link_table<mirror_link> mirror_links = std::move(h.mirror_links);
+  renumber_links(links, node_of_old);
+  renumber_links(mirror_links, node_of_old);
+  const element_light light = std::move(solver.light);
+  solver.meshes.refined = refined;
+  solver.meshes.current = refined.get();
+  if (!solver.sources.specular_lamp.empty()) solver.sources.specular_lamp = carried(solver.sources.specular_lamp, from);
+  solver.meshes.input_element = carried(solver.meshes.input_element, from);
+  rebuild_for_mesh(solver, std::move(tree));
+  h.links = std::move(links);
+  h.mirror_links = std::move(mirror_links);
+  index_links(h.links, h.tree.nodes.size());
+  index_links(h.mirror_links, h.tree.nodes.size());
+  solver.light.total = carried(light.total, from);
+  solver.light.direct = carried(light.direct, from);
+  solver.light.mirrored = carried(light.mirrored, from);
+  solver.residual.assign(refined->element_count(), rgb(0.0));
+  solver.gathered = {};
+  return true;
+}
+
+}  // namespace bounce

@@ -1,0 +1,59 @@
+#include "radiosity/hierarchical/publication.h"
+
+#include "radiosity/hierarchical/final_gather.h"
+#include "radiosity/hierarchical/solver.h"
+#include "radiosity/hierarchical/specular_passes.h"
+
+namespace bounce {
+
+std::vector<rgb> element_to_vertex(const patch_mesh& mesh, const std::vector<rgb>& per_element) {
+  std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
+  std::vector<double> area(mesh.vertex_count(), 0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      sum[std::size_t(mesh.elements[e][k])] += per_element[e] * mesh.element_areas[e];
+      area[std::size_t(mesh.elements[e][k])] += mesh.element_areas[e];
+    }
+  for (std::size_t v = 0; v < sum.size(); ++v)
+    if (area[v] > 0.0) sum[v] /= area[v];
+  return sum;
+}
+
+bool solution_final(const hierarchical_solver& solver) {
+  return refinement_done(solver) && specular_passes_done(solver);
+}
+
+vertex_light publish_vertex_light(hierarchical_solver& h) {
+  const patch_mesh& mesh = h.mesh();
+  const element_sources& src = h.sources;
+  vertex_light out;
+  const bool gathered = solution_final(h) && h.residual_fraction <= h.params.refine_below && final_gather(h);
+  if (gathered) {
+    std::vector<rgb> b(h.light.total.size()), d(h.light.total.size());
+    for (std::size_t e = 0; e < b.size(); ++e) {
+      b[e] = src.emission[e] + src.lamp[e] + h.gathered.total[e];
+      d[e] = src.lamp[e] - (src.specular_lamp.empty() ? rgb(0.0) : src.specular_lamp[e]) + h.gathered.direct[e];
+    }
+    out.radiosity = element_to_vertex(mesh, b);
+    out.direct = element_to_vertex(mesh, d);
+  } else {
+    out.radiosity = element_to_vertex(mesh, h.light.total);
+    out.direct = element_to_vertex(mesh, h.light.direct);
+  }
+  // The lights' light through mirrors and glass enters B as a
+  // right-hand-side term, and through the links through mirrors: B's
+  // caustic part is that term plus what those links bring from the emitters.
+  if (!src.specular_lamp_input.empty() || !h.hierarchy.mirror_links.empty()) {
+    const std::vector<rgb>& mirrored = gathered ? h.gathered.mirrored : h.light.mirrored;
+    std::vector<rgb> caustic(mesh.element_count(), rgb(0.0));
+    for (std::size_t e = 0; e < caustic.size(); ++e) {
+      if (!src.specular_lamp_input.empty())
+        caustic[e] = src.specular_lamp_input[std::size_t(h.meshes.input_element[e])];
+      if (e < mirrored.size()) caustic[e] += mirrored[e];
+    }
+    out.caustic = element_to_vertex(mesh, caustic);
+  }
+  return out;
+}
+
+}  // namespace bounce
