@@ -1,4 +1,4 @@
-#include "mesh_renderer.h"
+#include "render/mesh_renderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,10 @@
 #include <glad/gl.h>
 #include <glm/matrix.hpp>
 
-#include "closed_surface.h"
-#include "gl_program.h"
+#include "render/closed_surface.h"
+#include "render/gl_program.h"
+#include "render/shader_files.h"
 #include "scene/texture.h"
-#include "shader_files.h"
 
 namespace bounce::gl {
 namespace {

@@ -10,10 +10,10 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "curved_display.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
-#include "reflection_probes.h"
+#include "render/curved_display.h"
+#include "render/reflection_probes.h"
 
 namespace bounce::gl {
 

@@ -1,4 +1,4 @@
-#include "panel.h"
+#include "viewer/panel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "solver_worker.h"
+#include "viewer/solver_worker.h"
 
 #include <chrono>
 

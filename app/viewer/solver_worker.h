@@ -17,9 +17,9 @@
 #include <tbb/task_arena.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh_renderer.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/solver_settings.h"
+#include "render/mesh_renderer.h"
 #include "scene/scene.h"
 
 namespace bounce {

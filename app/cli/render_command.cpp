@@ -1,4 +1,4 @@
-#include "render_command.h"
+#include "cli/render_command.h"
 
 #include <chrono>
 #include <cstdio>
@@ -8,14 +8,14 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "console.h"
+#include "cli/console.h"
+#include "cli/solver_stats.h"
+#include "headless/offscreen_view.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
-#include "offscreen_view.h"
-#include "panel.h"
 #include "radiosity/radiosity.h"
 #include "scene/camera_math.h"
-#include "solver_stats.h"
+#include "viewer/panel.h"
 
 namespace bounce {
 namespace {

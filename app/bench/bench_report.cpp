@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench_command.h"
+#include "bench/bench_command.h"
 #include "measure/bench.h"
 
 namespace bounce {

@@ -1,4 +1,4 @@
-#include "trace_command.h"
+#include "cli/trace_command.h"
 
 #include <atomic>
 #include <chrono>
@@ -10,7 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
-#include "console.h"
+#include "cli/console.h"
+#include "cli/solver_stats.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
@@ -18,7 +19,6 @@
 #include "scene/camera_math.h"
 #include "scene/obj_io.h"
 #include "scene/scene_info.h"
-#include "solver_stats.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {

@@ -1,4 +1,4 @@
-#include "solve_command.h"
+#include "cli/solve_command.h"
 
 #include <atomic>
 #include <chrono>
@@ -8,14 +8,14 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
-#include "console.h"
+#include "cli/console.h"
+#include "cli/solver_stats.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/occlusion.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/reference_solver.h"
 #include "scene/ply.h"
-#include "solver_stats.h"
 
 namespace bounce {
 namespace {

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 namespace bounce {
 

@@ -1,11 +1,11 @@
-#include "info_command.h"
+#include "cli/info_command.h"
 
 #include <cstdio>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "scene/scene_info.h"
 #include "trace/back_faces.h"
 

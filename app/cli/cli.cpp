@@ -1,4 +1,4 @@
-#include "cli.h"
+#include "cli/cli.h"
 
 #include <charconv>
 #include <cmath>
@@ -14,18 +14,18 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
-#include "bench_command.h"
-#include "compare_command.h"
-#include "console.h"
+#include "bench/bench_command.h"
+#include "cli/compare_command.h"
+#include "cli/console.h"
+#include "cli/info_command.h"
+#include "cli/render_command.h"
+#include "cli/solve_command.h"
+#include "cli/trace_command.h"
 #include "image/picture_file.h"
-#include "info_command.h"
-#include "render_command.h"
 #include "scene/obj_io.h"
 #include "scene/scene_io.h"
 #include "scene/scene_validate.h"
-#include "solve_command.h"
-#include "trace_command.h"
-#include "viewer.h"
+#include "viewer/viewer.h"
 
 namespace bounce {
 namespace {

@@ -1,11 +1,11 @@
-#include "compare_command.h"
+#include "cli/compare_command.h"
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <utility>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "image/image.h"
 #include "image/image_metrics.h"
 
