@@ -24,7 +24,7 @@
 #include "bench/bench_rays.h"
 #include "bench/bench_references.h"
 #include "bench/bench_suites.h"
-#include "cli/cli.h"
+#include "cli/exit_code.h"
 #include "measure/bench.h"
 #include "scene/procedural.h"
 #include "scene/scene_io.h"

@@ -3,10 +3,19 @@
 
 #include <string>
 
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace bounce {
 
-// `factor`: box-filter blocks of factor x factor pixels first; `bright` > 0:
-// leave out pixels where the reference exceeds it (emitters).
-int run_compare(const std::string& test_path, const std::string& reference_path, int factor, double bright);
+struct compare_options {
+  std::string test_path, reference_path;
+  int downsample = 1;          // box-filter blocks of downsample x downsample pixels first
+  double exclude_above = 0.0;  // > 0: leave out pixels where the reference exceeds it (emitters)
+};
+
+void add_compare_options(CLI::App& command, compare_options& options);
+int run_compare(const compare_options& options);
 
 }  // namespace bounce

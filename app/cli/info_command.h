@@ -3,9 +3,19 @@
 
 #include <string>
 
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace bounce {
 
-// `max_edge` 0: the scene's default tessellation size for curved surfaces.
-int run_info(const std::string& path, bool as_json, double max_edge);
+struct info_options {
+  std::string scene;      // SCENE; empty: the embedded Cornell box
+  bool as_json = false;   // --json
+  double max_edge = 0.0;  // tessellation size for curved surfaces; 0: the scene's default
+};
+
+void add_info_options(CLI::App& command, info_options& options);
+int run_info(const info_options& options);
 
 }  // namespace bounce

@@ -4,11 +4,20 @@
 
 #include <string>
 
-#include "cli/cli.h"
+#include "cli/camera_options.h"
+#include "radiosity/solver_settings.h"
+#include "scene/scene.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace bounce {
 
 struct render_options {
+  std::string scene;                    // SCENE; empty: the embedded Cornell box
+  solver_settings solver;               // the solver options
+  camera_options camera;                // the camera overrides
   std::string out_path = "bounce.png";  // --out: the extension picks the format
   std::string pfm_path;                 // --pfm: also linear radiance
   std::string frames_dir;               // --frames: PNGs of the convergence
@@ -23,6 +32,20 @@ struct render_options {
   int msaa = 4;                      // samples per pixel; 0 or 1: none
 };
 
-int run_render(const scene& s, const solver_settings& solver, const render_options& options);
+void add_render_options(CLI::App& command, render_options& options);
+
+// Combinations that would ignore an option (solver options, options of
+// PNG output with a linear --out), and output paths that cannot be
+// written; an error message or an empty string. May settle the solver the
+// options choose (check_solver_options).
+std::string check_render_options(const CLI::App& command, render_options& options);
+
+// Loads the options' scene with their camera, then renders it.
+int run_render(const render_options& options);
+
+// Solves `s` with the options' solver and renders its camera's view; the
+// options' scene and camera are not read (`bounce SCENE` without a display
+// renders a scene it has loaded).
+int render_scene(const scene& s, const render_options& options);
 
 }  // namespace bounce
