@@ -4,7 +4,7 @@
 
 #include "mesh_builders.h"
 #include "render/closed_surface.h"
-#include "render/mesh_renderer.h"
+#include "render/mesh_arrays.h"
 
 namespace bounce {
 namespace {
