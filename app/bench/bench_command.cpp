@@ -23,6 +23,7 @@
 
 #include "bench/bench_rays.h"
 #include "bench/bench_references.h"
+#include "bench/bench_report.h"
 #include "bench/bench_suites.h"
 #include "cli/exit_code.h"
 #include "measure/bench.h"
