@@ -1,4 +1,4 @@
-#include "offscreen_view.h"
+#include "headless/offscreen_view.h"
 
 #include <algorithm>
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "headless/osmesa_context.h"
 #include "image/image.h"
-#include "mesh_renderer.h"
-#include "osmesa_context.h"
+#include "render/mesh_renderer.h"
 
 namespace bounce::headless {
 

@@ -5,7 +5,7 @@
 // llvmpipe's LLVM, whose relocations cost every process about 60 ms at
 // start-up (a `bounce --version` took 80 ms, 20 ms without it), and most
 // commands never draw.
-#include "osmesa_context.h"
+#include "headless/osmesa_context.h"
 
 #include <algorithm>
 

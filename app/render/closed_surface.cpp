@@ -1,4 +1,4 @@
-#include "closed_surface.h"
+#include "render/closed_surface.h"
 
 #include <cstdint>
 #include <unordered_map>

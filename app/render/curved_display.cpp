@@ -1,4 +1,4 @@
-#include "curved_display.h"
+#include "render/curved_display.h"
 
 #include <algorithm>
 #include <cmath>

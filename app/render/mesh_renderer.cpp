@@ -1,18 +1,15 @@
-#include "mesh_renderer.h"
+#include "render/mesh_renderer.h"
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <map>
 #include <vector>
 
 #include <glad/gl.h>
 #include <glm/matrix.hpp>
 
-#include "closed_surface.h"
-#include "gl_program.h"
+#include "render/gl_program.h"
+#include "render/shader_files.h"
 #include "scene/texture.h"
-#include "shader_files.h"
 
 namespace bounce::gl {
 namespace {
@@ -97,151 +94,6 @@ bool mesh_renderer::init(std::string& error) {
   glGenBuffers(1, &dynamic_buffer_);
   glGenBuffers(1, &index_buffer_);
   return true;
-}
-
-mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source) {
-  mesh_arrays out;
-  const std::size_t solution_count = mesh.vertex_count();
-  // Curved surfaces drawn finer, within twice the mesh's triangles (at
-  // least 30,000): llvmpipe's frame time follows the triangle count.
-  const curved_display curved = make_curved_display(mesh, source.get(), display_degrees_per_step,
-                                                    std::max<std::size_t>(2 * mesh.element_count(), 30000));
-  const std::size_t vertex_count = solution_count + curved.positions.size();
-  out.vertex_count = vertex_count;
-  out.solution_vertex_count = solution_count;
-  out.blends = curved.blends;
-  // Element size seen from a vertex: the square root of its elements' mean area.
-  std::vector<double> area_sum(solution_count, 0.0);
-  std::vector<int> count(solution_count, 0);
-  for (std::size_t e = 0; e < mesh.element_count(); ++e)
-    for (int k = 0; k < 3; ++k) {
-      area_sum[mesh.elements[e][k]] += mesh.element_areas[e];
-      ++count[mesh.elements[e][k]];
-    }
-  auto has_back = [&](std::size_t v) {
-    if (!source || v >= mesh.vertex_surfaces.size()) return false;
-    const int surf = mesh.vertex_surfaces[v];
-    if (surf < 0 || std::size_t(surf) >= source->surfaces.size()) return false;
-    const surface& s = source->surfaces[std::size_t(surf)];
-    return s.back_side >= 0 || s.back_of >= 0;
-  };
-  // Static: position, normal, reflectance, element size (its sign: has_back), uv, interleaved.
-  const bool has_uvs = mesh.uvs.size() == solution_count;
-  std::vector<float>& data = out.vertices;
-  data.reserve(vertex_count * mesh_arrays::floats_per_vertex);
-  auto push = [&data](const auto& value, int n) {
-    for (int k = 0; k < n; ++k) data.push_back(float(value[k]));
-  };
-  std::vector<float> sizes(solution_count);
-  for (std::size_t v = 0; v < solution_count; ++v) {
-    push(mesh.positions[v], 3);
-    push(mesh.normals[v], 3);
-    push(mesh.vertex_rho[v], 3);
-    const float size = count[v] ? float(std::sqrt(area_sum[v] / count[v])) : 0.0f;
-    // Negative on surfaces with a back (two-sided): the shader draws only their front.
-    sizes[v] = has_back(v) ? -size : size;
-    data.push_back(sizes[v]);
-    out.largest_element = std::max(out.largest_element, size);
-    push(has_uvs ? glm::vec2(mesh.uvs[v]) : glm::vec2(0.0f), 2);
-  }
-  for (std::size_t x = 0; x < curved.positions.size(); ++x) {
-    const vertex_blend& b = curved.blends[x];
-    auto blend = [&](const auto& values) {
-      return double(b.wa) * values[b.a] + double(b.wb) * values[b.b] + double(b.wc) * values[b.c];
-    };
-    push(curved.positions[x], 3);
-    push(curved.normals[x], 3);
-    push(blend(mesh.vertex_rho), 3);
-    data.push_back(b.wa * sizes[b.a] + b.wb * sizes[b.b] + b.wc * sizes[b.c]);
-    push(has_uvs ? glm::vec2(blend(mesh.uvs)) : glm::vec2(0.0f), 2);
-  }
-  out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
-  out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
-  for (const vec3& p : mesh.positions) {
-    out.bounds_min = glm::min(out.bounds_min, glm::vec3(p));
-    out.bounds_max = glm::max(out.bounds_max, glm::vec3(p));
-  }
-  if (solution_count == 0) out.bounds_min = out.bounds_max = glm::vec3(0.0f);
-
-  // Plain elements in the mesh's order (one draw), then a run for each
-  // textured material and each specular surface (a draw each, with its
-  // texture or its reflection probe bound).
-  const bool has_materials = mesh.element_materials.size() == mesh.element_count();
-  const bool has_surfaces = mesh.element_surfaces.size() == mesh.element_count();
-  auto material_of = [&](std::size_t e) -> const material* {
-    const int m = has_materials ? mesh.element_materials[e] : -1;
-    return source && m >= 0 && std::size_t(m) < source->materials.size() ? &source->materials[std::size_t(m)] : nullptr;
-  };
-  auto texture_of = [&](const material* m) {
-    return m && m->texture >= 0 && std::size_t(m->texture) < source->textures.size() ? m->texture : -1;
-  };
-  auto specular = [](const material* m) { return m && glm::any(glm::greaterThan(glm::max(m->kr, m->kt), rgb(0.0))); };
-  // (material, surface if specular else -1) -> its elements
-  std::map<std::pair<int, int>, std::vector<std::size_t>> runs;
-  std::vector<glm::vec3> display_positions;  // for the specular surfaces' closed_surface test
-  auto emit = [&](std::size_t e) {
-    for (std::size_t t = 3 * curved.first[e]; t < 3 * curved.first[e + 1]; ++t)
-      out.indices.push_back(curved.triangles[t]);
-  };
-  out.indices.reserve(curved.triangles.size());
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const material* m = material_of(e);
-    if (texture_of(m) < 0 && !specular(m)) {
-      emit(e);
-      continue;
-    }
-    const int surface = specular(m) && has_surfaces ? mesh.element_surfaces[e] : -1;
-    runs[{mesh.element_materials[e], surface}].push_back(e);
-  }
-  out.plain_count = out.indices.size();
-  for (const auto& [key, elements] : runs) {
-    const material& m = source->materials[std::size_t(key.first)];
-    material_run run;
-    run.texture = texture_of(&m);
-    run.emitted = glm::vec3(m.ke);
-    run.first = out.indices.size();
-    for (std::size_t e : elements) emit(e);
-    run.count = out.indices.size() - run.first;
-    if (specular(&m)) {
-      specular_surface probe;
-      probe.surface = key.second;
-      probe.kr = glm::vec3(m.kr);
-      probe.kt = glm::vec3(m.kt);
-      probe.ior = float(m.ior);
-      probe.fresnel = m.fresnel;
-      probe.specular = glm::vec3(m.specular);
-      probe.shininess = float(m.shininess);
-      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-      for (std::size_t i = run.first; i < out.indices.size(); ++i) {
-        const float* p = &data[std::size_t(out.indices[i]) * mesh_arrays::floats_per_vertex];
-        lo = glm::min(lo, glm::vec3(p[0], p[1], p[2]));
-        hi = glm::max(hi, glm::vec3(p[0], p[1], p[2]));
-      }
-      probe.centre = 0.5f * (lo + hi);
-      for (std::size_t i = run.first; i < out.indices.size(); ++i) {
-        const float* p = &data[std::size_t(out.indices[i]) * mesh_arrays::floats_per_vertex];
-        probe.radius = std::max(probe.radius, glm::length(glm::vec3(p[0], p[1], p[2]) - probe.centre));
-      }
-      // A sheet: thinner than a twentieth of its extent (a pane, a flat mirror).
-      const glm::vec3 extent = hi - lo;
-      probe.thin = std::min({extent.x, extent.y, extent.z}) <= 0.05f * std::max({extent.x, extent.y, extent.z});
-      if (display_positions.empty()) {
-        display_positions.resize(vertex_count);
-        for (std::size_t v = 0; v < vertex_count; ++v) {
-          const float* p = &data[v * mesh_arrays::floats_per_vertex];
-          display_positions[v] = glm::vec3(p[0], p[1], p[2]);
-        }
-      }
-      probe.solid = bounds_solid_outward(out.indices, run.first, run.count, display_positions);
-      run.probe = int(out.probes.size());
-      out.probes.push_back(probe);
-    }
-    out.runs.push_back(run);
-  }
-  out.outline_first = out.indices.size();
-  out.indices.insert(out.indices.end(), curved.outline.begin(), curved.outline.end());
-  out.source = std::move(source);
-  return out;
 }
 
 void mesh_renderer::delete_textures() {
@@ -353,17 +205,6 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(unsigned int)), indices.data(),
                GL_STATIC_DRAW);
   glBindVertexArray(0);
-}
-
-std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot) {
-  // The solution stays in double up to here; GL takes float.
-  const std::size_t n = snapshot.radiosity.size();
-  std::vector<glm::vec3> colours(2 * n);
-  for (std::size_t v = 0; v < n; ++v) {
-    colours[v] = glm::vec3(snapshot.radiosity[v]);
-    colours[n + v] = glm::vec3(snapshot.unshot_vertex[v]);
-  }
-  return colours;
 }
 
 void mesh_renderer::update(const std::vector<glm::vec3>& colours, const glm::vec3& ambient) {

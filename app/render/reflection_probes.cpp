@@ -1,4 +1,4 @@
-#include "reflection_probes.h"
+#include "render/reflection_probes.h"
 
 #include <glad/gl.h>
 #include <glm/gtc/matrix_transform.hpp>

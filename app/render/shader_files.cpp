@@ -1,4 +1,4 @@
-#include "shader_files.h"
+#include "render/shader_files.h"
 
 #include <cassert>
 

@@ -1,4 +1,4 @@
-#include "error_tracker.h"
+#include "viewer/error_tracker.h"
 
 #include <cstdio>
 

@@ -16,7 +16,7 @@
 
 #include "base/background_worker.h"
 #include "measure/bench.h"
-#include "solver_worker.h"
+#include "viewer/solver_worker.h"
 
 namespace bounce {
 

@@ -1,4 +1,4 @@
-#include "input.h"
+#include "viewer/input.h"
 
 #include <glad/gl.h>
 // glad first: GLFW must not pull in a GL header of its own.
@@ -8,7 +8,7 @@
 
 #include <utility>
 
-#include "window.h"
+#include "viewer/window.h"
 
 namespace bounce {
 

@@ -3,8 +3,8 @@
 // actions through its shortcut (shortcuts() in panel.h).
 #pragma once
 
-#include "panel.h"
 #include "scene/orbit.h"
+#include "viewer/panel.h"
 
 struct GLFWwindow;
 

@@ -1,4 +1,4 @@
-#include "panel.h"
+#include "viewer/panel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -231,47 +231,48 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
   return lines;
 }
 
-panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still,
-                         const error_status& errors) {
-  panel_actions act;
+namespace {
+
+// The panel's window. Widgets leave room on their right for the longest
+// label, so that no label is cut off however narrow the panel is made.
+void begin_panel_window() {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(440, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Bounce");
-  // Widgets leave room on their right for the longest label, so that no
-  // label is cut off however narrow the panel is made.
   float label_room = 0.0f;
   for (const char* label :
        {"stop at residual", "samples per pixel", "element size", "exposure (stops)", "link tolerance"})
     label_room = std::max(label_room, ImGui::CalcTextSize(label).x);
   ImGui::PushItemWidth(-(label_room + ImGui::GetStyle().ItemInnerSpacing.x));
+}
 
-  if (ImGui::CollapsingHeader("Scene")) {
-    char path[1024];
-    std::snprintf(path, sizeof path, "%s", state.scene_path.c_str());
-    if (ImGui::InputText("path", path, sizeof path, ImGuiInputTextFlags_EnterReturnsTrue)) act.open_scene = true;
-    state.scene_path = path;
-    if (ImGui::BeginCombo("assets", "choose...")) {
-      for (const std::string& s : state.asset_scenes)
-        if (ImGui::Selectable(s.c_str())) {
-          state.scene_path = s;
-          act.open_scene = true;
-        }
-      ImGui::EndCombo();
+// A combo of scene paths; choosing one opens it.
+void scene_combo(const char* label, const std::vector<std::string>& scenes, panel_state& state, panel_actions& act) {
+  if (!ImGui::BeginCombo(label, "choose...")) return;
+  for (const std::string& s : scenes)
+    if (ImGui::Selectable(s.c_str())) {
+      state.scene_path = s;
+      act.open_scene = true;
     }
-    if (!state.recent_scenes.empty() && ImGui::BeginCombo("recent", "choose...")) {
-      for (const std::string& s : state.recent_scenes)
-        if (ImGui::Selectable(s.c_str())) {
-          state.scene_path = s;
-          act.open_scene = true;
-        }
-      ImGui::EndCombo();
-    }
-    if (ImGui::Button("Open")) act.open_scene = true;
-    ImGui::SameLine();
-    ImGui::TextDisabled("or drop a file on the window");
-  }
-  // Errors stay visible whatever is collapsed, wrapped in full; the
-  // previous scene keeps running.
+  ImGui::EndCombo();
+}
+
+void draw_scene_section(panel_state& state, panel_actions& act) {
+  if (!ImGui::CollapsingHeader("Scene")) return;
+  char path[1024];
+  std::snprintf(path, sizeof path, "%s", state.scene_path.c_str());
+  if (ImGui::InputText("path", path, sizeof path, ImGuiInputTextFlags_EnterReturnsTrue)) act.open_scene = true;
+  state.scene_path = path;
+  scene_combo("assets", state.asset_scenes, state, act);
+  if (!state.recent_scenes.empty()) scene_combo("recent", state.recent_scenes, state, act);
+  if (ImGui::Button("Open")) act.open_scene = true;
+  ImGui::SameLine();
+  ImGui::TextDisabled("or drop a file on the window");
+}
+
+// Errors stay visible whatever is collapsed, wrapped in full; the
+// previous scene keeps running.
+void draw_problems(const panel_state& state, const worker_view& view) {
   if (!view.error.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
     ImGui::TextWrapped("%s", view.error.c_str());
@@ -282,259 +283,345 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     ImGui::TextWrapped("%s", state.warning.c_str());
     ImGui::PopStyleColor();
   }
+}
 
-  if (ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) {
-    solver_settings& solver = state.solver;
-    // A new solver restarts at once (the mesh is kept when it meshes the
-    // same); the other settings wait for Apply.
-    if (ImGui::BeginCombo("solver", std::string(name_of(solver.method)).c_str())) {
-      for (const auto& m : solver_method_names())
-        if (ImGui::Selectable(std::string(m.name).c_str(), m.method == solver.method))
-          act.apply_mesh |= choose_solver(state, m.method).apply_mesh;
-      ImGui::EndCombo();
-    }
-    const bool hierarchical = solver.method == solver_method::hierarchical;
-    // The element size in scene units: automatic (shown as the mesher
-    // chose it) until a size is typed.
-    bool automatic = solver.max_edge <= 0.0;
-    float max_edge = float(automatic && view.mesh ? view.mesh->max_edge : solver.max_edge);
-    if (ImGui::Checkbox("auto", &automatic)) solver.max_edge = automatic ? 0.0 : double(max_edge);
-    ImGui::SameLine();
-    if (automatic) ImGui::BeginDisabled();
-    if (ImGui::InputFloat("element size", &max_edge, 0, 0, "%.4g scene units") && !automatic)
-      solver.max_edge = std::max(0.0f, max_edge);
-    if (automatic) ImGui::EndDisabled();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(hierarchical ? "longest edge of the starting elements (split further where the light needs it)"
-                                     : "longest element edge");
-    if (hierarchical) {
-      // A log scale from 1e-8 to 1e-2 of the emitted power, two digits.
-      float exponent = float(std::log10(std::clamp(solver.link_tolerance, 1e-8, 1e-2)));
-      const std::string shown = format_tolerance(solver.link_tolerance);
-      if (ImGui::SliderFloat("link tolerance", &exponent, -8.0f, -2.0f, shown.c_str(),
-                             ImGuiSliderFlags_NoRoundToFormat))
-        solver.link_tolerance = std::strtod(format_tolerance(std::pow(10.0, double(exponent))).c_str(), nullptr);
-      // Restarts when the slider is let go, not at every value passed.
-      if (ImGui::IsItemDeactivatedAfterEdit()) act.apply_mesh = true;
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("power a link may carry unrefined, a fraction of the emitted power: lower is finer");
-    } else {
-      form_factor_params& ff = solver.form_factors;
-      if (ImGui::BeginCombo("form factors", std::string(name_of(ff.method)).c_str())) {
-        for (const auto& m : form_factor_method_names())
-          if (ImGui::Selectable(std::string(m.name).c_str(), m.method == ff.method)) ff.method = m.method;
-        ImGui::EndCombo();
-      }
-      if (ff.method == form_factor_method::raycast)
-        ImGui::SliderInt("shadow rays", &ff.shadow_rays, 1, 64);
-      else
-        ImGui::SliderInt("hemicube", &ff.hemicube_resolution, 16, 512);
-    }
-    stop_criterion& stop = solver.stop;
-    float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
-    // A log scale shown as a percentage of the emitted power (ImGui's
-    // format string: % doubled). Applies at once.
-    std::string shown_stop = format_percent(stop.unshot_fraction);
-    for (std::size_t at = shown_stop.find('%'); at != std::string::npos; at = shown_stop.find('%', at + 2))
-      shown_stop.insert(at, 1, '%');
-    if (ImGui::SliderFloat(hierarchical ? "stop at residual" : "stop at unshot", &until, -8.0f, 0.0f,
-                           shown_stop.c_str(), ImGuiSliderFlags_NoRoundToFormat)) {
-      stop.unshot_fraction = std::strtod(format_tolerance(std::pow(10.0, double(until))).c_str(), nullptr);
-      act.set_stop = true;
-    }
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(hierarchical ? "stop when what one more iteration would move is below this share of the power"
-                                     : "stop when the power not yet shot is below this share of the emitted power");
-    if (!hierarchical) {
-      // Adaptive meshing: refine where the light changes (applies on re-mesh).
-      adaptive_params& adaptive = solver.adaptive;
-      ImGui::Checkbox("adaptive meshing", &adaptive.enabled);
-      if (adaptive.enabled) {
-        float tolerance = float(adaptive.tolerance);
-        ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-        adaptive.tolerance = double(tolerance);
-        float min_edge = float(adaptive.min_edge);
-        ImGui::InputFloat("min edge (0: auto)", &min_edge, 0, 0, "%.4g");
-        adaptive.min_edge = std::max(0.0f, min_edge);
-      }
-    }
-    if (ImGui::Button("Apply")) act.apply_mesh = true;
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("solve again with these settings (re-meshed if they change the mesh)");
-    ImGui::SameLine();
-    if (view.running) {
-      if (ImGui::Button("Pause")) act.pause = true;
-    } else if (ImGui::Button("Start")) {
-      act.resume = true;
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Step")) act.step = true;
-    ImGui::SameLine();
-    if (ImGui::Button("Restart")) act.restart = true;
-  }
+// A new solver restarts at once (the mesh is kept when it meshes the
+// same); the other settings wait for Apply.
+void draw_solver_choice(panel_state& state, panel_actions& act) {
+  if (!ImGui::BeginCombo("solver", std::string(name_of(state.solver.method)).c_str())) return;
+  for (const auto& m : solver_method_names())
+    if (ImGui::Selectable(std::string(m.name).c_str(), m.method == state.solver.method))
+      act.apply_mesh |= choose_solver(state, m.method).apply_mesh;
+  ImGui::EndCombo();
+}
 
-  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen) && view.solution && view.mesh) {
-    for (const std::string& text : statistics_lines(view, frame_ms)) ImGui::TextWrapped("%s", text.c_str());
-    const bool hierarchical = view.settings.method == solver_method::hierarchical;
-    // Unshot power and, against a reference, the error of the picture, on
-    // one time axis.
-    const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
-                                errors.history.empty() ? 0.0 : errors.history.back().seconds);
-    const std::vector<float> plot =
-        resample_log(view.history, end, 120, [](const convergence_point& p) { return p.unshot_fraction; });
-    if (!plot.empty())
-      log_plot("##unshot",
-               hierarchical ? "residual (share of the power, log scale) against time"
-                            : "unshot power (share of the emitted, log scale) against time",
-               plot, -8.0f, 0.0f, end);
-    const std::vector<float> error_plot =
-        resample_log(errors.history, end, 120, [](const error_point& p) { return p.error; });
-    if (!error_plot.empty())
-      log_plot("##error", "error of the picture (relative RMSE, log scale) against time", error_plot, -3.0f, 0.0f, end);
-    if (errors.computing) {
-      ImGui::ProgressBar(float(errors.progress), ImVec2(-80, 0));
-      ImGui::SameLine();
-      ImGui::TextUnformatted("reference");
-    } else if (ImGui::Button("Reference for the error plot")) {
-      act.compute_reference = true;
-    }
-    ImGui::TextWrapped("%s", errors.summary.c_str());
-    if (!errors.history.empty())
-      ImGui::TextWrapped("error now %.2f%% (relative RMSE of the picture)", 100.0 * errors.history.back().error);
-    if (errors.last) {
-      if (std::isnan(errors.last->error))
-        ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot", errors.last->seconds,
-                           100.0 * errors.last->unshot_fraction);
-      else
-        ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot, error %.2f%%", errors.last->seconds,
-                           100.0 * errors.last->unshot_fraction, 100.0 * errors.last->error);
-    }
-  }
+// The element size in scene units: automatic (shown as the mesher chose
+// it) until a size is typed.
+void draw_element_size(solver_settings& solver, const worker_view& view) {
+  bool automatic = solver.max_edge <= 0.0;
+  float max_edge = float(automatic && view.mesh ? view.mesh->max_edge : solver.max_edge);
+  if (ImGui::Checkbox("auto", &automatic)) solver.max_edge = automatic ? 0.0 : double(max_edge);
+  ImGui::SameLine();
+  if (automatic) ImGui::BeginDisabled();
+  if (ImGui::InputFloat("element size", &max_edge, 0, 0, "%.4g scene units") && !automatic)
+    solver.max_edge = std::max(0.0f, max_edge);
+  if (automatic) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(solver.method == solver_method::hierarchical
+                          ? "longest edge of the starting elements (split further where the light needs it)"
+                          : "longest element edge");
+}
 
-  if (ImGui::CollapsingHeader("Display")) {
-    float stops = float(std::log2(state.display.exposure));
-    ImGui::SliderFloat("exposure (stops)", &stops, -8.0f, 8.0f, "%.1f");
-    state.display.exposure = std::exp2(double(stops));
-    int curve = int(state.display.curve) == 1 ? 1 : 0;
-    ImGui::Combo("tone curve", &curve, "sRGB\0filmic\0");
-    state.display.curve = curve ? gl::tone_curve::filmic : gl::tone_curve::srgb;
-    ImGui::Checkbox("wireframe", &state.display.wireframe);
-    ImGui::SameLine();
-    ImGui::Checkbox("ambient term", &state.display.ambient);
-    int colours = int(state.display.colours);
-    ImGui::Combo("colours", &colours, "radiance\0false colour: unshot power\0false colour: element size\0");
-    state.display.colours = static_cast<gl::false_colour>(colours);
-    ImGui::Checkbox("highlight back faces", &state.display.highlight_back_faces);
-    ImGui::Checkbox("refine at rest", &state.refine_at_rest);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("when the camera rests, trace passes of the still in the background and show their mean");
-    if (state.refined_passes > 0) {
-      ImGui::SameLine();
-      ImGui::TextDisabled("%d passes", state.refined_passes);
-    }
-    if (ImGui::Button("Frame scene")) act.frame_scene = true;
-    ImGui::SameLine();
-    if (ImGui::Button("Scene camera")) act.reset_camera = true;
-    if (ImGui::Button("Screenshot")) act.screenshot = true;
-    ImGui::SameLine();
-    ImGui::Checkbox("with panel", &state.screenshot_with_panel);
+// The hierarchical solver's link tolerance, on a log scale from 1e-8 to
+// 1e-2 of the emitted power, two digits.
+void draw_link_tolerance(solver_settings& solver, panel_actions& act) {
+  float exponent = float(std::log10(std::clamp(solver.link_tolerance, 1e-8, 1e-2)));
+  const std::string shown = format_tolerance(solver.link_tolerance);
+  if (ImGui::SliderFloat("link tolerance", &exponent, -8.0f, -2.0f, shown.c_str(), ImGuiSliderFlags_NoRoundToFormat))
+    solver.link_tolerance = std::strtod(format_tolerance(std::pow(10.0, double(exponent))).c_str(), nullptr);
+  // Restarts when the slider is let go, not at every value passed.
+  if (ImGui::IsItemDeactivatedAfterEdit()) act.apply_mesh = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("power a link may carry unrefined, a fraction of the emitted power: lower is finer");
+}
+
+// The progressive solver's form factors: the method and its resolution.
+void draw_form_factors(form_factor_params& ff) {
+  if (ImGui::BeginCombo("form factors", std::string(name_of(ff.method)).c_str())) {
+    for (const auto& m : form_factor_method_names())
+      if (ImGui::Selectable(std::string(m.name).c_str(), m.method == ff.method)) ff.method = m.method;
+    ImGui::EndCombo();
   }
-  if (ImGui::CollapsingHeader("Camera")) {
-    // A view found here renders the same with `render` and `trace`.
-    if (ImGui::Button("Copy as options")) {
-      ImGui::SetClipboardText(camera_command_line(state.current_camera).c_str());
-      state.message = "camera copied as command-line options";
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Copy as JSON")) {
-      ImGui::SetClipboardText(camera_json(state.current_camera).c_str());
-      state.message = "camera copied as JSON (a camera file)";
-    }
-    char path[1024];
-    std::snprintf(path, sizeof path, "%s", state.camera_path.c_str());
-    ImGui::InputText("camera file", path, sizeof path);
-    state.camera_path = path;
-    if (ImGui::Button("Save camera file")) act.save_camera = true;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("then: bounce render SCENE --camera FILE");
-    ImGui::SameLine();
-    if (ImGui::Button("Bookmark this view")) act.add_bookmark = true;
-    for (std::size_t i = 0; i < state.bookmarks.size(); ++i) {
-      ImGui::PushID(int(i));
-      if (ImGui::SmallButton("x")) act.delete_bookmark = int(i);
-      ImGui::SameLine();
-      if (ImGui::Selectable(state.bookmarks[i].name.c_str())) act.go_to_bookmark = int(i);
-      ImGui::PopID();
-    }
+  if (ff.method == form_factor_method::raycast)
+    ImGui::SliderInt("shadow rays", &ff.shadow_rays, 1, 64);
+  else
+    ImGui::SliderInt("hemicube", &ff.hemicube_resolution, 16, 512);
+}
+
+// The stopping point, on a log scale shown as a percentage of the emitted
+// power (ImGui's format string: % doubled). Applies at once.
+void draw_stopping_point(stop_criterion& stop, bool hierarchical, panel_actions& act) {
+  float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
+  std::string shown_stop = format_percent(stop.unshot_fraction);
+  for (std::size_t at = shown_stop.find('%'); at != std::string::npos; at = shown_stop.find('%', at + 2))
+    shown_stop.insert(at, 1, '%');
+  if (ImGui::SliderFloat(hierarchical ? "stop at residual" : "stop at unshot", &until, -8.0f, 0.0f, shown_stop.c_str(),
+                         ImGuiSliderFlags_NoRoundToFormat)) {
+    stop.unshot_fraction = std::strtod(format_tolerance(std::pow(10.0, double(until))).c_str(), nullptr);
+    act.set_stop = true;
   }
-  if (ImGui::CollapsingHeader("Ray-traced still", ImGuiTreeNodeFlags_DefaultOpen)) {
-    still_settings& st = state.still;
-    ImGui::Combo("integrator", &st.integrator,
-                 "Whitted over the radiosity\0two-pass: caustics + final gather\0progressive photon mapping\0"
-                 "path tracer (reference)\0");
-    ImGui::SliderInt("samples per pixel", &st.spp, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
-    if (st.integrator == 0) ImGui::Combo("direct light", &st.direct, "shadow rays (sharp)\0from the radiosity\0");
-    ImGui::Checkbox("at the window's size", &st.window_size);
-    if (!st.window_size) {
-      if ((st.size[0] <= 0 || st.size[1] <= 0) && view.source) {  // start from the scene camera's
-        st.size[0] = view.source->view.width;
-        st.size[1] = view.source->view.height;
-      }
-      ImGui::InputInt2("size", st.size);
-      st.size[0] = std::clamp(st.size[0], 1, 16384);
-      st.size[1] = std::clamp(st.size[1], 1, 16384);
-    }
-    if (still.running) {
-      ImGui::ProgressBar(float(still.progress), ImVec2(-80, 0));
-      ImGui::SameLine();
-      if (ImGui::Button("Cancel")) act.cancel_still = true;
-    } else if (ImGui::Button("Ray trace still (T)")) {
-      act.trace_still = true;
-    }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(hierarchical ? "stop when what one more iteration would move is below this share of the power"
+                                   : "stop when the power not yet shot is below this share of the emitted power");
+}
+
+// Adaptive meshing: refine where the light changes (applies on re-mesh).
+void draw_adaptive_meshing(adaptive_params& adaptive) {
+  ImGui::Checkbox("adaptive meshing", &adaptive.enabled);
+  if (!adaptive.enabled) return;
+  float tolerance = float(adaptive.tolerance);
+  ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  adaptive.tolerance = double(tolerance);
+  float min_edge = float(adaptive.min_edge);
+  ImGui::InputFloat("min edge (0: auto)", &min_edge, 0, 0, "%.4g");
+  adaptive.min_edge = std::max(0.0f, min_edge);
+}
+
+// Apply, Pause or Start, Step, Restart.
+void draw_solver_buttons(const worker_view& view, panel_actions& act) {
+  if (ImGui::Button("Apply")) act.apply_mesh = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("solve again with these settings (re-meshed if they change the mesh)");
+  ImGui::SameLine();
+  if (view.running) {
+    if (ImGui::Button("Pause")) act.pause = true;
+  } else if (ImGui::Button("Start")) {
+    act.resume = true;
   }
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) act.step = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Restart")) act.restart = true;
+}
+
+void draw_solver_section(panel_state& state, const worker_view& view, panel_actions& act) {
+  if (!ImGui::CollapsingHeader("Solver", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  draw_solver_choice(state, act);
+  solver_settings& solver = state.solver;
+  const bool hierarchical = solver.method == solver_method::hierarchical;
+  draw_element_size(solver, view);
+  if (hierarchical)
+    draw_link_tolerance(solver, act);
+  else
+    draw_form_factors(solver.form_factors);
+  draw_stopping_point(solver.stop, hierarchical, act);
+  if (!hierarchical) draw_adaptive_meshing(solver.adaptive);
+  draw_solver_buttons(view, act);
+}
+
+// Unshot power and, against a reference, the error of the picture, on
+// one time axis.
+void draw_convergence_plots(const worker_view& view, const error_status& errors) {
+  const bool hierarchical = view.settings.method == solver_method::hierarchical;
+  const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
+                              errors.history.empty() ? 0.0 : errors.history.back().seconds);
+  const std::vector<float> plot =
+      resample_log(view.history, end, 120, [](const convergence_point& p) { return p.unshot_fraction; });
+  if (!plot.empty())
+    log_plot("##unshot",
+             hierarchical ? "residual (share of the power, log scale) against time"
+                          : "unshot power (share of the emitted, log scale) against time",
+             plot, -8.0f, 0.0f, end);
+  const std::vector<float> error_plot =
+      resample_log(errors.history, end, 120, [](const error_point& p) { return p.error; });
+  if (!error_plot.empty())
+    log_plot("##error", "error of the picture (relative RMSE, log scale) against time", error_plot, -3.0f, 0.0f, end);
+}
+
+// The reference the error plot measures against: its progress or the
+// button that starts it, then the error now and that of the last run with
+// the same settings.
+void draw_error_reference(const error_status& errors, panel_actions& act) {
+  if (errors.computing) {
+    ImGui::ProgressBar(float(errors.progress), ImVec2(-80, 0));
+    ImGui::SameLine();
+    ImGui::TextUnformatted("reference");
+  } else if (ImGui::Button("Reference for the error plot")) {
+    act.compute_reference = true;
+  }
+  ImGui::TextWrapped("%s", errors.summary.c_str());
+  if (!errors.history.empty())
+    ImGui::TextWrapped("error now %.2f%% (relative RMSE of the picture)", 100.0 * errors.history.back().error);
+  if (!errors.last) return;
+  if (std::isnan(errors.last->error))
+    ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot", errors.last->seconds,
+                       100.0 * errors.last->unshot_fraction);
+  else
+    ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot, error %.2f%%", errors.last->seconds,
+                       100.0 * errors.last->unshot_fraction, 100.0 * errors.last->error);
+}
+
+void draw_statistics_section(const worker_view& view, double frame_ms, const error_status& errors, panel_actions& act) {
+  if (!ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen) || !view.solution || !view.mesh) return;
+  for (const std::string& text : statistics_lines(view, frame_ms)) ImGui::TextWrapped("%s", text.c_str());
+  draw_convergence_plots(view, errors);
+  draw_error_reference(errors, act);
+}
+
+// Framing the scene, the scene's camera, and screenshots.
+void draw_view_buttons(panel_state& state, panel_actions& act) {
+  if (ImGui::Button("Frame scene")) act.frame_scene = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Scene camera")) act.reset_camera = true;
+  if (ImGui::Button("Screenshot")) act.screenshot = true;
+  ImGui::SameLine();
+  ImGui::Checkbox("with panel", &state.screenshot_with_panel);
+}
+
+// How the solution is shown: exposure, tone curve, wireframe, false
+// colours, refinement at rest.
+void draw_display_section(panel_state& state, panel_actions& act) {
+  if (!ImGui::CollapsingHeader("Display")) return;
+  gl::display_settings& display = state.display;
+  float stops = float(std::log2(display.exposure));
+  ImGui::SliderFloat("exposure (stops)", &stops, -8.0f, 8.0f, "%.1f");
+  display.exposure = std::exp2(double(stops));
+  int curve = int(display.curve) == 1 ? 1 : 0;
+  ImGui::Combo("tone curve", &curve, "sRGB\0filmic\0");
+  display.curve = curve ? gl::tone_curve::filmic : gl::tone_curve::srgb;
+  ImGui::Checkbox("wireframe", &display.wireframe);
+  ImGui::SameLine();
+  ImGui::Checkbox("ambient term", &display.ambient);
+  int colours = int(display.colours);
+  ImGui::Combo("colours", &colours, "radiance\0false colour: unshot power\0false colour: element size\0");
+  display.colours = static_cast<gl::false_colour>(colours);
+  ImGui::Checkbox("highlight back faces", &display.highlight_back_faces);
+  ImGui::Checkbox("refine at rest", &state.refine_at_rest);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("when the camera rests, trace passes of the still in the background and show their mean");
+  if (state.refined_passes > 0) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("%d passes", state.refined_passes);
+  }
+  draw_view_buttons(state, act);
+}
+
+// The scene's bookmarks: go to one, or delete it (x).
+void draw_bookmarks(const panel_state& state, panel_actions& act) {
+  for (std::size_t i = 0; i < state.bookmarks.size(); ++i) {
+    ImGui::PushID(int(i));
+    if (ImGui::SmallButton("x")) act.delete_bookmark = int(i);
+    ImGui::SameLine();
+    if (ImGui::Selectable(state.bookmarks[i].name.c_str())) act.go_to_bookmark = int(i);
+    ImGui::PopID();
+  }
+}
+
+// The camera for the command line (a view found here renders the same
+// with `render` and `trace`), a camera file, and bookmarks.
+void draw_camera_section(panel_state& state, panel_actions& act) {
+  if (!ImGui::CollapsingHeader("Camera")) return;
+  if (ImGui::Button("Copy as options")) {
+    ImGui::SetClipboardText(camera_command_line(state.current_camera).c_str());
+    state.message = "camera copied as command-line options";
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Copy as JSON")) {
+    ImGui::SetClipboardText(camera_json(state.current_camera).c_str());
+    state.message = "camera copied as JSON (a camera file)";
+  }
+  char path[1024];
+  std::snprintf(path, sizeof path, "%s", state.camera_path.c_str());
+  ImGui::InputText("camera file", path, sizeof path);
+  state.camera_path = path;
+  if (ImGui::Button("Save camera file")) act.save_camera = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("then: bounce render SCENE --camera FILE");
+  ImGui::SameLine();
+  if (ImGui::Button("Bookmark this view")) act.add_bookmark = true;
+  draw_bookmarks(state, act);
+}
+
+// The ray-traced still's settings, and its progress or the button that
+// starts it.
+void draw_still_section(panel_state& state, const worker_view& view, const still_status& still, panel_actions& act) {
+  if (!ImGui::CollapsingHeader("Ray-traced still", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  still_settings& st = state.still;
+  ImGui::Combo("integrator", &st.integrator,
+               "Whitted over the radiosity\0two-pass: caustics + final gather\0progressive photon mapping\0"
+               "path tracer (reference)\0");
+  ImGui::SliderInt("samples per pixel", &st.spp, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
+  if (st.integrator == 0) ImGui::Combo("direct light", &st.direct, "shadow rays (sharp)\0from the radiosity\0");
+  ImGui::Checkbox("at the window's size", &st.window_size);
+  if (!st.window_size) {
+    if ((st.size[0] <= 0 || st.size[1] <= 0) && view.source) {  // start from the scene camera's
+      st.size[0] = view.source->view.width;
+      st.size[1] = view.source->view.height;
+    }
+    ImGui::InputInt2("size", st.size);
+    st.size[0] = std::clamp(st.size[0], 1, 16384);
+    st.size[1] = std::clamp(st.size[1], 1, 16384);
+  }
+  if (still.running) {
+    ImGui::ProgressBar(float(still.progress), ImVec2(-80, 0));
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) act.cancel_still = true;
+  } else if (ImGui::Button("Ray trace still (T)")) {
+    act.trace_still = true;
+  }
+}
+
+// The last action's message and the help button, under the sections.
+void end_panel_window(panel_state& state) {
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   if (ImGui::Button("Help (H)")) state.show_help = true;
   ImGui::PopItemWidth();
   ImGui::End();
+}
 
-  if (still.texture && state.show_still) {
-    ImGui::SetNextWindowPos(ImVec2(460, 8), ImGuiCond_FirstUseEver);
-    ImGui::Begin("Ray-traced still", &state.show_still, ImGuiWindowFlags_AlwaysAutoResize);
-    // Shown at most 480 pixels wide; saved at full size.
-    const float scale = std::min(1.0f, 480.0f / float(std::max(still.width, 1)));
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(still.texture)),
-                 ImVec2(float(still.width) * scale, float(still.height) * scale));
-    ImGui::TextUnformatted(still.summary.c_str());
-    char path[1024];
-    std::snprintf(path, sizeof path, "%s", state.still.png_path.c_str());
-    ImGui::InputText("PNG", path, sizeof path);
-    state.still.png_path = path;
-    ImGui::SameLine();
-    if (ImGui::Button("Save##png")) act.save_still_png = true;
-    std::snprintf(path, sizeof path, "%s", state.still.pfm_path.c_str());
-    ImGui::InputText("PFM", path, sizeof path);
-    state.still.pfm_path = path;
-    ImGui::SameLine();
-    if (ImGui::Button("Save##pfm")) act.save_still_pfm = true;
-    ImGui::End();
-  }
+// A path typed into a text field of the still's window.
+void path_field(const char* label, std::string& value) {
+  char path[1024];
+  std::snprintf(path, sizeof path, "%s", value.c_str());
+  ImGui::InputText(label, path, sizeof path);
+  value = path;
+}
 
-  if (state.show_help) {
-    ImGui::Begin("Keyboard and mouse", &state.show_help, ImGuiWindowFlags_AlwaysAutoResize);
-    for (const auto& [key, what] : shortcuts()) ImGui::Text("%-30s %s", key.c_str(), what.c_str());
-    ImGui::End();
-  }
-  if (state.confirm_quit) {
-    ImGui::OpenPopup("Quit?");
-    if (ImGui::BeginPopupModal("Quit?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-      ImGui::TextUnformatted(still.running ? "A still is being traced. Quit anyway?"
-                                           : "The solver is running. Quit anyway?");
-      if (ImGui::Button("Quit")) act.quit = true;
-      ImGui::SameLine();
-      if (ImGui::Button("Cancel")) state.confirm_quit = false;
-      if (!state.confirm_quit) ImGui::CloseCurrentPopup();
-      ImGui::EndPopup();
-    }
-  }
+// The finished still in a window of its own, with its PNG and PFM saves.
+void draw_still_window(panel_state& state, const still_status& still, panel_actions& act) {
+  if (!still.texture || !state.show_still) return;
+  ImGui::SetNextWindowPos(ImVec2(460, 8), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Ray-traced still", &state.show_still, ImGuiWindowFlags_AlwaysAutoResize);
+  // Shown at most 480 pixels wide; saved at full size.
+  const float scale = std::min(1.0f, 480.0f / float(std::max(still.width, 1)));
+  ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(still.texture)),
+               ImVec2(float(still.width) * scale, float(still.height) * scale));
+  ImGui::TextUnformatted(still.summary.c_str());
+  path_field("PNG", state.still.png_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save##png")) act.save_still_png = true;
+  path_field("PFM", state.still.pfm_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save##pfm")) act.save_still_pfm = true;
+  ImGui::End();
+}
+
+void draw_help_window(panel_state& state) {
+  if (!state.show_help) return;
+  ImGui::Begin("Keyboard and mouse", &state.show_help, ImGuiWindowFlags_AlwaysAutoResize);
+  for (const auto& [key, what] : shortcuts()) ImGui::Text("%-30s %s", key.c_str(), what.c_str());
+  ImGui::End();
+}
+
+// "Quit while working?", opened by escape().
+void draw_quit_popup(panel_state& state, const still_status& still, panel_actions& act) {
+  if (!state.confirm_quit) return;
+  ImGui::OpenPopup("Quit?");
+  if (!ImGui::BeginPopupModal("Quit?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::TextUnformatted(still.running ? "A still is being traced. Quit anyway?"
+                                       : "The solver is running. Quit anyway?");
+  if (ImGui::Button("Quit")) act.quit = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) state.confirm_quit = false;
+  if (!state.confirm_quit) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
+}  // namespace
+
+panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still,
+                         const error_status& errors) {
+  panel_actions act;
+  begin_panel_window();
+  draw_scene_section(state, act);
+  draw_problems(state, view);
+  draw_solver_section(state, view, act);
+  draw_statistics_section(view, frame_ms, errors, act);
+  draw_display_section(state, act);
+  draw_camera_section(state, act);
+  draw_still_section(state, view, still, act);
+  end_panel_window(state);
+  draw_still_window(state, still, act);
+  draw_help_window(state);
+  draw_quit_popup(state, still, act);
   return act;
 }
 

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "error_tracker.h"
-#include "mesh_renderer.h"
 #include "radiosity/solver_settings.h"
-#include "solver_worker.h"
+#include "render/mesh_renderer.h"
+#include "viewer/error_tracker.h"
+#include "viewer/solver_worker.h"
 
 namespace bounce {
 

@@ -1,8 +1,8 @@
-#include "picture_quad.h"
+#include "viewer/picture_quad.h"
 
 #include <glad/gl.h>
 
-#include "gl_program.h"
+#include "render/gl_program.h"
 
 namespace bounce {
 namespace {

@@ -1,4 +1,4 @@
-#include "rest_refiner.h"
+#include "viewer/rest_refiner.h"
 
 #include <algorithm>
 #include <thread>

@@ -1,11 +1,11 @@
-#include "scripted_run.h"
+#include "viewer/scripted_run.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "image/image.h"
-#include "viewer.h"
+#include "viewer/viewer.h"
 
 namespace bounce {
 

@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <string>
 
-#include "error_tracker.h"
-#include "still_job.h"
+#include "viewer/error_tracker.h"
+#include "viewer/still_job.h"
 
 namespace bounce {
 

@@ -1,6 +1,4 @@
-#include "solver_worker.h"
-
-#include <chrono>
+#include "viewer/solver_worker.h"
 
 #include "scene/scene_io.h"
 
@@ -106,7 +104,8 @@ void solver_worker::set_criterion(const stop_criterion& criterion) {
 }
 
 void solver_worker::wait_idle() const {
-  while (!idle_.load()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  std::unique_lock lock(mutex_);
+  went_idle_.wait(lock, [this] { return idle_; });
 }
 
 void solver_worker::handle(command& c) {
@@ -232,6 +231,7 @@ void solver_worker::run() {
       std::unique_lock lock(mutex_);
       if (queue_.empty() && !work) {
         idle_ = true;
+        went_idle_.notify_all();
         wake_.wait(lock, [this] { return quit_ || !queue_.empty(); });
       }
       if (quit_) return;

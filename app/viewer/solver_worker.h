@@ -17,9 +17,9 @@
 #include <tbb/task_arena.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh_renderer.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/solver_settings.h"
+#include "render/mesh_arrays.h"
 #include "scene/scene.h"
 
 namespace bounce {
@@ -101,8 +101,9 @@ class solver_worker {
     return std::atomic_load(&view_);
   }
 
-  // Blocks until the worker is idle (paused, converged or failed); for
-  // tests and the scripted window run.
+  // Blocks until the worker is idle (paused, converged or failed): nothing
+  // queued and nothing being worked on. For tests and the scripted window
+  // run.
   void wait_idle() const;
 
  private:
@@ -115,9 +116,13 @@ class solver_worker {
 
   std::thread thread_;
   mutable std::mutex mutex_;
-  mutable std::condition_variable wake_;
+  mutable std::condition_variable wake_;  // the worker's: a command or quit
   std::deque<std::unique_ptr<command>> queue_;
   bool quit_ = false;
+  // Set by the worker when it goes to wait with nothing queued and nothing
+  // to do, cleared by every command queued; under mutex_.
+  bool idle_ = true;
+  mutable std::condition_variable went_idle_;  // wait_idle's
 
   // Worker-thread state.
   std::shared_ptr<const scene> scene_;
@@ -134,7 +139,6 @@ class solver_worker {
   bool unpublished_ = false;  // steps made since the last publish
   mutable std::atomic<bool> wanted_{true};
   std::string error_;
-  std::atomic<bool> idle_{true};
 
   std::shared_ptr<const worker_view> view_;
   std::shared_ptr<const patch_mesh> arrays_mesh_;  // the mesh mesh_arrays_ were built from

@@ -1,4 +1,4 @@
-#include "still_job.h"
+#include "viewer/still_job.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "user_files.h"
+#include "viewer/user_files.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "panel.h"
+#include "viewer/panel.h"
 
 namespace bounce {
 

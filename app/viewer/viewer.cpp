@@ -1,4 +1,4 @@
-#include "viewer.h"
+#include "viewer/viewer.h"
 
 #include <algorithm>
 #include <atomic>
@@ -16,22 +16,23 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "error_tracker.h"
+#include "cli/exit_code.h"
 #include "image/image.h"
-#include "input.h"
-#include "mesh_renderer.h"
-#include "panel.h"
-#include "picture_quad.h"
-#include "rest_refiner.h"
+#include "render/mesh_renderer.h"
 #include "scene/camera_math.h"
 #include "scene/orbit.h"
 #include "scene/scene_io.h"
-#include "scripted_run.h"
-#include "solver_worker.h"
-#include "still_job.h"
 #include "trace/back_faces.h"
-#include "user_files.h"
-#include "window.h"
+#include "viewer/error_tracker.h"
+#include "viewer/input.h"
+#include "viewer/panel.h"
+#include "viewer/picture_quad.h"
+#include "viewer/rest_refiner.h"
+#include "viewer/scripted_run.h"
+#include "viewer/solver_worker.h"
+#include "viewer/still_job.h"
+#include "viewer/user_files.h"
+#include "viewer/window.h"
 
 namespace bounce {
 namespace {

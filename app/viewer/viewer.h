@@ -4,7 +4,8 @@
 
 #include <string>
 
-#include "cli.h"
+#include "radiosity/solver_settings.h"
+#include "scene/scene.h"
 
 namespace bounce {
 

@@ -2,9 +2,9 @@
 // (closed_surface.h): closed, consistently wound, outward; nothing else.
 #include <gtest/gtest.h>
 
-#include "closed_surface.h"
 #include "mesh_builders.h"
-#include "mesh_renderer.h"
+#include "render/closed_surface.h"
+#include "render/mesh_arrays.h"
 
 namespace bounce {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "curved_display.h"
 #include "mesh_builders.h"
+#include "render/curved_display.h"
 
 namespace bounce {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <glad/gl.h>
 
-#include "gl_program.h"
-#include "osmesa_context.h"
+#include "headless/osmesa_context.h"
+#include "render/gl_program.h"
 
 namespace bounce {
 namespace {

@@ -14,11 +14,11 @@
 #include <imgui_internal.h>
 
 #include "mesh_builders.h"
-#include "test_files.h"
-#include "panel.h"
 #include "scene/scene_io.h"
-#include "solver_worker.h"
-#include "user_files.h"
+#include "test_files.h"
+#include "viewer/panel.h"
+#include "viewer/solver_worker.h"
+#include "viewer/user_files.h"
 
 namespace bounce {
 namespace {

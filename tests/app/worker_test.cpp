@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
-#include "error_tracker.h"
 #include "mesh_builders.h"
 #include "scene/scene_io.h"
-#include "solver_worker.h"
-#include "still_job.h"
 #include "test_files.h"
+#include "viewer/error_tracker.h"
+#include "viewer/solver_worker.h"
+#include "viewer/still_job.h"
 
 namespace bounce {
 namespace {

@@ -1,4 +1,4 @@
-#include "bench_rays.h"
+#include "bench/bench_rays.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,7 +12,7 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
-#include "cli.h"
+#include "cli/exit_code.h"
 #include "measure/ray_throughput.h"
 #include "scene/procedural.h"
 #include "scene/scene_io.h"

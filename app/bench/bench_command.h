@@ -6,8 +6,6 @@
 
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
-
 namespace CLI {
 class App;
 }
@@ -26,10 +24,9 @@ void add_bench_options(CLI::App& command, bench_options& options);
 
 // The CPU's model name from /proc/cpuinfo ("unknown" if absent), for reports.
 std::string cpu_model();
-int run_bench_command(const bench_options& options);
 
-// The report from the collected results (bench.json's contents): CSV,
-// SVG plots and Markdown, written into `out_dir`. Returns the Markdown.
-std::string write_bench_report(const nlohmann::json& results, const std::string& out_dir);
+// Runs the suite (or one case of it, or the report alone). Not run_bench:
+// measure/bench.h's run_bench is the run of one case.
+int run_bench_command(const bench_options& options);
 
 }  // namespace bounce

@@ -1,4 +1,4 @@
-#include "bench_command.h"
+#include "bench/bench_command.h"
 
 #include <spawn.h>
 #include <sys/resource.h>
@@ -21,10 +21,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bench_rays.h"
-#include "bench_references.h"
-#include "bench_suites.h"
-#include "cli.h"
+#include "bench/bench_rays.h"
+#include "bench/bench_references.h"
+#include "bench/bench_report.h"
+#include "bench/bench_suites.h"
+#include "cli/exit_code.h"
 #include "measure/bench.h"
 #include "scene/procedural.h"
 #include "scene/scene_io.h"

@@ -1,4 +1,4 @@
-#include "bench_suites.h"
+#include "bench/bench_suites.h"
 
 #include <cstdio>
 #include <initializer_list>
@@ -164,7 +164,8 @@ suite_plan make_suite(const std::string& suite) {
     // targets are set: the Cornell box at 128 x 128 (against a 4096-spp
     // reference) over link tolerances, the progressive solver's defaults
     // and the path tracer; the rho = 0.99 furnace at 0.05 edges to 1e-5.
-    for (double tolerance : {3e-5, 1e-5, 3e-6, 1e-6}) plan.cases.push_back(hierarchical_case("cornell", tolerance, 25.0));
+    for (double tolerance : {3e-5, 1e-5, 3e-6, 1e-6})
+      plan.cases.push_back(hierarchical_case("cornell", tolerance, 25.0));
     plan.cases.push_back(default_case("cornell", solver_method::progressive, 25.0));
     add_path(plan, "cornell", 20.0);
     plan.cases.push_back(hierarchical_case("furnace-0.99", solver_settings{}.link_tolerance, 60.0, 1e-5, 0.05));

@@ -1,4 +1,4 @@
-#include "trace_command.h"
+#include "cli/trace_command.h"
 
 #include <atomic>
 #include <chrono>
@@ -10,7 +10,12 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
-#include "console.h"
+#include "cli/console.h"
+#include "cli/exit_code.h"
+#include "cli/option_values.h"
+#include "cli/scene_argument.h"
+#include "cli/solver_options.h"
+#include "cli/solver_stats.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
@@ -18,7 +23,6 @@
 #include "scene/camera_math.h"
 #include "scene/obj_io.h"
 #include "scene/scene_info.h"
-#include "solver_stats.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {
@@ -57,6 +61,9 @@ bool solve(const scene& s, const solver_settings& solver, solved& out) {
 }  // namespace
 
 void add_trace_options(CLI::App& command, trace_options& options) {
+  add_scene_argument(command, options.scene);
+  add_solver_options(command, options.solver);
+  add_camera_options(command, options.camera);
   command
       .add_option("--out", options.out_path,
                   "the still; the extension picks the format: .png (radiance x exposure, sRGB), or .pfm, .exr, .hdr "
@@ -135,9 +142,15 @@ void add_trace_options(CLI::App& command, trace_options& options) {
   command.add_option("--exposure", options.exposure, "PNG value = radiance x exposure")
       ->check(number_in(min_exposure, max_exposure))
       ->capture_default_str();
+  command.add_option("--stats", options.stats_path,
+                     "write trace statistics (and the radiosity pass's) as JSON to this file");
 }
 
-std::string check_trace_options(const CLI::App& command, const trace_options& options) {
+namespace {
+
+// Options the chosen integrator and passes would ignore (e.g. --ambient
+// without --no-radiosity, solver options with the path tracer).
+std::string check_integrator_options(const CLI::App& command, const trace_options& options) {
   auto given = [&](const char* name) { return command.count(name) > 0; };
   const bool path = options.integrator == "path";
   const bool gathered = options.integrator == "twopass" || options.integrator == "ppm";
@@ -174,7 +187,21 @@ std::string check_trace_options(const CLI::App& command, const trace_options& op
   return {};
 }
 
-int run_trace(const scene& s, const solver_settings& solver, const trace_options& options) {
+}  // namespace
+
+std::string check_trace_options(const CLI::App& command, trace_options& options) {
+  if (std::string e = check_solver_options(command, options.solver); !e.empty()) return e;
+  if (std::string e = check_integrator_options(command, options); !e.empty()) return e;
+  if (std::string e = check_png_only(command, {"--exposure"}, options.out_path); !e.empty()) return e;
+  return check_output_files(
+      {{"--out", options.out_path, true}, {"--pfm", options.pfm_path, false}, {"--stats", options.stats_path, false}});
+}
+
+namespace {
+
+// Solves `s` (the radiosity pass) and traces its camera's still.
+int trace_scene(const scene& s, const trace_options& options) {
+  const solver_settings& solver = options.solver;
   trace_params params;
   params.method = options.integrator == "path"      ? integrator::path
                   : options.integrator == "twopass" ? integrator::twopass
@@ -349,6 +376,14 @@ int run_trace(const scene& s, const solver_settings& solver, const trace_options
     say("wrote %s (linear radiance)\n", options.pfm_path.c_str());
   }
   return exit_ok;
+}
+
+}  // namespace
+
+int run_trace(const trace_options& options) {
+  scene s;
+  if (int code = load_for_command(options.scene, &options.camera, s); code != exit_ok) return code;
+  return trace_scene(s, options);
 }
 
 }  // namespace bounce

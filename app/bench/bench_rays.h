@@ -4,7 +4,7 @@
 // Writes rays.json and rays.md into the output folder.
 #pragma once
 
-#include "bench_command.h"
+#include "bench/bench_command.h"
 
 namespace bounce {
 

@@ -1,11 +1,15 @@
-#include "info_command.h"
+#include "cli/info_command.h"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli.h"
+#include "cli/exit_code.h"
+#include "cli/option_values.h"
+#include "cli/scene_argument.h"
 #include "scene/scene_info.h"
 #include "trace/back_faces.h"
 
@@ -20,10 +24,17 @@ std::string format_vec3(const vec3& v) {
 
 }  // namespace
 
-int run_info(const std::string& path, bool as_json, double max_edge) {
+void add_info_options(CLI::App& command, info_options& options) {
+  add_scene_argument(command, options.scene);
+  command.add_flag("--json", options.as_json, "machine-readable output");
+  command.add_option("--max-edge", options.max_edge, "tessellation size for curved surfaces")
+      ->check(number_in(0.0, INFINITY, true));
+}
+
+int run_info(const info_options& options) {
   scene s;
-  if (int code = load_for_command(path, nullptr, s); code != exit_ok) return code;
-  double edge = max_edge > 0.0 ? max_edge : default_max_edge(s);
+  if (int code = load_for_command(options.scene, nullptr, s); code != exit_ok) return code;
+  double edge = options.max_edge > 0.0 ? options.max_edge : default_max_edge(s);
   scene_summary sum;
   if (std::string e = summarize_scene(s, edge, sum); !e.empty()) {
     std::cerr << "error: " << s.source << ": " << e << "\n";
@@ -33,7 +44,7 @@ int run_info(const std::string& path, bool as_json, double max_edge) {
   const double back_faces = back_face_fraction(s, s.view, ray_scene(s));
   if (const std::string w = back_face_warning(back_faces); !w.empty())
     std::cerr << "warning: " << s.source << ": " << w << "\n";
-  if (as_json) {
+  if (options.as_json) {
     nlohmann::json j = {
         {"back_face_fraction", back_faces},
         {"scene", s.source},

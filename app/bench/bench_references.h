@@ -7,7 +7,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "bench_suites.h"
+#include "bench/bench_suites.h"
 
 namespace bounce {
 

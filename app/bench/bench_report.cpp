@@ -1,6 +1,5 @@
-// The bench's report: CSV (one row per measured point), an SVG plot of
-// error against time per scene, and a Markdown summary with the Pareto
-// front, the targets of issue #6 and the growth with element count.
+#include "bench/bench_report.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +13,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench_command.h"
 #include "measure/bench.h"
 
 namespace bounce {

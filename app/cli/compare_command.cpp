@@ -1,11 +1,14 @@
-#include "compare_command.h"
+#include "cli/compare_command.h"
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <utility>
 
-#include "cli.h"
+#include <CLI/CLI.hpp>
+
+#include "cli/exit_code.h"
+#include "cli/option_values.h"
 #include "image/image.h"
 #include "image/image_metrics.h"
 
@@ -25,7 +28,23 @@ std::string first_non_finite_pixel(const image& img) {
 
 }  // namespace
 
-int run_compare(const std::string& test_path, const std::string& reference_path, int factor, double bright) {
+void add_compare_options(CLI::App& command, compare_options& options) {
+  command.add_option("TEST", options.test_path, "picture to measure (PFM)")->required();
+  command.add_option("REFERENCE", options.reference_path, "reference picture (PFM), the same size")->required();
+  command
+      .add_option("--exclude-above", options.exclude_above,
+                  "leave out pixels (and their neighbours) where the reference exceeds this radiance: emitters")
+      ->check(number_in(0.0, INFINITY, true));
+  command.add_option("--downsample", options.downsample, "box-filter N x N blocks of both first (N at most the size)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+}
+
+int run_compare(const compare_options& options) {
+  const std::string& test_path = options.test_path;
+  const std::string& reference_path = options.reference_path;
+  const int factor = options.downsample;
+  const double bright = options.exclude_above;
   image test, reference;
   std::string error;
   if (!read_pfm(test_path, test, error) || !read_pfm(reference_path, reference, error)) {

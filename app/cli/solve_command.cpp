@@ -1,4 +1,4 @@
-#include "solve_command.h"
+#include "cli/solve_command.h"
 
 #include <atomic>
 #include <chrono>
@@ -6,25 +6,30 @@
 #include <cstdio>
 
 #include <tbb/parallel_for.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "console.h"
+#include "cli/console.h"
+#include "cli/exit_code.h"
+#include "cli/option_values.h"
+#include "cli/scene_argument.h"
+#include "cli/solver_options.h"
+#include "cli/solver_stats.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/transfer/occlusion.h"
 #include "scene/ply.h"
-#include "solver_stats.h"
 
 namespace bounce {
 namespace {
 
 using clock_type = std::chrono::steady_clock;
 
-}  // namespace
-
-int run_solve(const scene& s, const solver_settings& solver, const solve_options& extra) {
+// Meshes and solves `s`, reports, and writes the files asked for.
+int solve_scene(const scene& s, const solve_options& options) {
+  const solver_settings& solver = options.solver;
   const auto mesh_start = clock_type::now();
   patch_mesh mesh;
   std::string error;
@@ -45,7 +50,7 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
 
   auto state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
   constexpr std::size_t baseline_rays = 2'000'000;
-  if (extra.ray_baseline)
+  if (options.ray_baseline)
     std::const_pointer_cast<occlusion_scene>(state->form_factors.occlusion)->record_segments(baseline_rays);
   auto last_print = clock_type::now();
   std::uint64_t shots_then = 0, rays_then = 0;
@@ -101,7 +106,7 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
 
   nlohmann::json stats = solver_stats_json(s, solver, mesh, *state, mesh_seconds);
 
-  if (extra.reference) {
+  if (options.reference) {
     reference_params rp;
     rp.form_factors = solver.form_factors;
     reference_solution ref;
@@ -124,9 +129,9 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
                           {"seconds_gauss_seidel", ref.seconds_gauss_seidel},
                           {"max_relative_difference", difference}};
   }
-  if (extra.ray_baseline && solver.form_factors.method != form_factor_method::raycast) {
+  if (options.ray_baseline && solver.form_factors.method != form_factor_method::raycast) {
     say("ray baseline: the hemicube casts no shadow rays\n");
-  } else if (extra.ray_baseline) {
+  } else if (options.ray_baseline) {
     // The same segments, one rtcOccluded1 call each, on all cores: Embree's
     // own rate on exactly the solver's rays, with no form-factor work.
     const auto segments = state->form_factors.occlusion->recorded_segments();
@@ -148,18 +153,54 @@ int run_solve(const scene& s, const solver_settings& solver, const solve_options
     stats["ray_baseline"] = {
         {"rays", segments.size()}, {"embree_mrays_per_second", raw}, {"solver_mrays_per_second", solver_rate}};
   }
-  if (!extra.stats_path.empty() && !write_stats(extra.stats_path, stats, error)) {
+  if (!options.stats_path.empty() && !write_stats(options.stats_path, stats, error)) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return exit_input_error;
   }
-  if (!extra.ply_path.empty()) {
-    if (!write_ply(extra.ply_path, solved, state->radiosity, error)) {
+  if (!options.ply_path.empty()) {
+    if (!write_ply(options.ply_path, solved, state->radiosity, error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }
-    say("wrote %s\n", extra.ply_path.c_str());
+    say("wrote %s\n", options.ply_path.c_str());
   }
   return exit_ok;
+}
+
+}  // namespace
+
+void add_solve_options(CLI::App& command, solve_options& options) {
+  add_scene_argument(command, options.scene);
+  add_solver_options(command, options.solver);
+  command.add_option("--ply", options.ply_path, "write the patch mesh with per-vertex radiosity as PLY");
+  command.add_option("--stats", options.stats_path, "write solver statistics as JSON to this file");
+  command.add_flag("--reference", options.reference,
+                   "also solve the full matrix (small scenes) and report the difference");
+  command.add_flag("--ray-baseline", options.ray_baseline,
+                   "raycast: replay 2M of the solver's shadow rays through Embree's rtcOccluded1 and compare rates");
+}
+
+std::string check_solve_options(const CLI::App& command, solve_options& options) {
+  if (std::string e = check_solver_options(command, options.solver); !e.empty()) return e;
+  if (options.reference || options.ray_baseline) {
+    // Both measure the progressive solver (against the matrix solution of
+    // its own system, or Embree's raw rate on its rays).
+    const std::string option = options.reference ? "--reference" : "--ray-baseline";
+    if (command.count("--solver") && options.solver.method == solver_method::hierarchical)
+      return option + " applies to --solver progressive only";
+    if (command.count("--link-tolerance"))
+      return "--link-tolerance applies to --solver hierarchical only (" + option + " measures the progressive solver)";
+    options.solver.method = solver_method::progressive;
+  }
+  if (options.ray_baseline && options.solver.form_factors.method != form_factor_method::raycast)
+    return "--ray-baseline applies to --method raycast only (the hemicube casts no shadow rays)";
+  return check_output_files({{"--ply", options.ply_path, false}, {"--stats", options.stats_path, false}});
+}
+
+int run_solve(const solve_options& options) {
+  scene s;
+  if (int code = load_for_command(options.scene, nullptr, s); code != exit_ok) return code;
+  return solve_scene(s, options);
 }
 
 }  // namespace bounce

@@ -1,4 +1,4 @@
-#include "render_command.h"
+#include "cli/render_command.h"
 
 #include <chrono>
 #include <cstdio>
@@ -7,15 +7,20 @@
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <CLI/CLI.hpp>
 
-#include "console.h"
+#include "cli/console.h"
+#include "cli/exit_code.h"
+#include "cli/option_values.h"
+#include "cli/scene_argument.h"
+#include "cli/solver_options.h"
+#include "cli/solver_stats.h"
+#include "headless/offscreen_view.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
-#include "offscreen_view.h"
-#include "panel.h"
 #include "radiosity/radiosity.h"
 #include "scene/camera_math.h"
-#include "solver_stats.h"
+#include "viewer/panel.h"
 
 namespace bounce {
 namespace {
@@ -31,7 +36,66 @@ std::vector<unsigned char> drop_alpha(const std::vector<unsigned char>& rgba) {
 
 }  // namespace
 
-int run_render(const scene& s, const solver_settings& solver, const render_options& options) {
+void add_render_options(CLI::App& command, render_options& options) {
+  add_scene_argument(command, options.scene);
+  add_solver_options(command, options.solver);
+  add_camera_options(command, options.camera);
+  command
+      .add_option("--out", options.out_path,
+                  "picture of the Gouraud view; the extension picks the format: .png (tone-mapped), or .pfm, .exr, "
+                  ".hdr (linear radiance, unscaled)")
+      ->capture_default_str();
+  command.add_option("--pfm", options.pfm_path, "also write the view in linear radiance to this PFM");
+  CLI::Option* frames = command.add_option(
+      "--frames", options.frames_dir,
+      "also write PNG frames of the convergence into DIR: after 1, 2, 4, 8, ... shots and at the end");
+  command
+      .add_option("--frame-every", options.frame_every,
+                  "with --frames: a frame every N shots instead of at doubling counts")
+      ->check(CLI::Range(1L, 1L << 40))
+      ->needs(frames);
+  command.add_option("--exposure", options.exposure, "displayed value = radiance x exposure")
+      ->check(number_in(min_exposure, max_exposure))
+      ->capture_default_str();
+  command.add_option("--tone", options.curve, "tone curve")
+      ->check(CLI::IsMember({"srgb", "filmic"}))
+      ->capture_default_str();
+  command.add_flag("--wireframe", options.wireframe, "draw element edges");
+  command.add_option("--stats", options.stats_path, "write solver statistics as JSON to this file");
+  command.add_flag("--ambient", options.ambient, "add the ambient term of the unshot power (display only)");
+  command.add_flag("--panel", options.panel, "draw the ImGui panel over the view, as in the window");
+  command.add_option("--colours", options.colours, "radiance, or false colour of unshot power or element size")
+      ->check(CLI::IsMember({"radiance", "unshot", "size"}))
+      ->capture_default_str();
+  command
+      .add_option("--msaa", options.msaa, "antialiasing samples per pixel; 0 draws as the window does on software GL")
+      ->check(CLI::IsMember({0, 1, 2, 4, 8}))
+      ->capture_default_str();
+}
+
+std::string check_render_options(const CLI::App& command, render_options& options) {
+  if (std::string e = check_solver_options(command, options.solver); !e.empty()) return e;
+  if (std::string e = check_png_only(command, {"--panel", "--tone", "--exposure"}, options.out_path); !e.empty())
+    return e;
+  if (!options.frames_dir.empty()) {
+    namespace fs = std::filesystem;
+    const fs::path parent = fs::absolute(options.frames_dir).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(options.frames_dir, ec) && !fs::is_directory(parent, ec))
+      return "--frames " + options.frames_dir + ": the folder " + parent.string() + " does not exist";
+  }
+  return check_output_files(
+      {{"--out", options.out_path, true}, {"--pfm", options.pfm_path, false}, {"--stats", options.stats_path, false}});
+}
+
+int run_render(const render_options& options) {
+  scene s;
+  if (int code = load_for_command(options.scene, &options.camera, s); code != exit_ok) return code;
+  return render_scene(s, options);
+}
+
+int render_scene(const scene& s, const render_options& options) {
+  const solver_settings& solver = options.solver;
   patch_mesh mesh;
   std::string error;
   const auto mesh_start = std::chrono::steady_clock::now();

@@ -7,11 +7,19 @@
 #include <optional>
 #include <string>
 
-#include "cli.h"
+#include "cli/camera_options.h"
+#include "radiosity/solver_settings.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace bounce {
 
 struct trace_options {
+  std::string scene;                          // SCENE; empty: the embedded Cornell box
+  solver_settings solver;                     // the solver options: the radiosity pass
+  camera_options camera;                      // the camera overrides
   std::string out_path = "bounce-trace.png";  // --out
   std::string pfm_path;                       // --pfm: linear radiance
   std::string integrator = "whitted";         // whitted | twopass | ppm | path
@@ -41,11 +49,15 @@ inline int default_spp(const std::string& integrator) {
   return integrator == "whitted" ? 16 : 4;
 }
 
-// Options the chosen integrator and passes would ignore (e.g. --ambient
-// without --no-radiosity, solver options with the path tracer); an error
-// message naming them, or an empty string.
-std::string check_trace_options(const CLI::App& command, const trace_options& options);
+// Options the chosen solver, integrator and passes would ignore (e.g.
+// --ambient without --no-radiosity, solver options with the path tracer,
+// --exposure with a linear --out), and output paths that cannot be
+// written; an error message naming them, or an empty string. May settle
+// the solver the options choose (check_solver_options).
+std::string check_trace_options(const CLI::App& command, trace_options& options);
 
-int run_trace(const scene& s, const solver_settings& solver, const trace_options& options);
+// Loads the options' scene with their camera, solves it (the radiosity
+// pass) and traces the still.
+int run_trace(const trace_options& options);
 
 }  // namespace bounce

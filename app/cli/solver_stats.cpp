@@ -1,11 +1,11 @@
-#include "solver_stats.h"
+#include "cli/solver_stats.h"
 
 #include <cstdio>
 #include <fstream>
 
 #include <tbb/global_control.h>
 
-#include "console.h"
+#include "cli/console.h"
 #include "radiosity/transfer/specular_paths.h"
 
 namespace bounce {

@@ -1,4 +1,4 @@
-#include "bench_references.h"
+#include "bench/bench_references.h"
 
 #include <algorithm>
 #include <chrono>

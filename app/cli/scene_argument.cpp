@@ -1,0 +1,58 @@
+#include "cli/scene_argument.h"
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/exit_code.h"
+#include "cli/option_values.h"
+#include "scene/scene_io.h"
+
+namespace bounce {
+namespace {
+
+void print_warnings(const load_report& report) {
+  for (const std::string& w : report.warnings) std::cerr << "warning: " << w << "\n";
+  if (report.dropped_faces) std::cerr << "warning: " << report.dropped_faces << " degenerate face(s) dropped\n";
+}
+
+}  // namespace
+
+void add_scene_argument(CLI::App& command, std::string& path) {
+  command.add_option("SCENE", path,
+                     "scene file (.json, .obj, .gltf or .glb), or generated:NAME (e.g. generated:interior-1m)");
+}
+
+// Loads the scene named on the command line (or the embedded default) and
+// applies the camera overrides. Prints the error and returns its exit code
+// (exit_ok on success): a scene that cannot be used is an input error, an
+// override that makes the camera invalid a usage error.
+int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s) {
+  load_report report;
+  if (!load_scene(path.empty() ? default_scene_path : path, s, report)) {
+    print_warnings(report);  // what was said before the failure often explains it
+    std::cerr << "error: " << report.error << "\n";
+    return exit_input_error;
+  }
+  print_warnings(report);
+  if (camera_overrides) {
+    // A camera file is a file that may be unusable (exit 1); the options
+    // typed over it are the command line (exit 2).
+    if (std::string e; !camera_overrides->file.empty() && !load_camera_file(camera_overrides->file, s.view, e)) {
+      std::cerr << "error: --camera: " << e << "\n";
+      return exit_input_error;
+    }
+    if (std::string e = apply_camera_options(*camera_overrides, s.view); !e.empty()) {
+      std::cerr << "error: " << e << "\n";
+      return exit_usage;
+    }
+    // The scene file's size, when --size did not replace it: the same limits.
+    if (std::string e = check_image_size(s.view.width, s.view.height); !e.empty()) {
+      std::cerr << "error: " << s.source << ": camera.size: " << e << " (use --size)\n";
+      return exit_input_error;
+    }
+  }
+  return exit_ok;
+}
+
+}  // namespace bounce

@@ -1,0 +1,24 @@
+// The scene a command works on: its SCENE argument, and the loading of
+// that scene with the warnings printed and the camera overrides applied.
+#pragma once
+
+#include <string>
+
+#include "cli/camera_options.h"
+#include "scene/scene.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace bounce {
+
+// SCENE, with the help every command shows for it.
+void add_scene_argument(CLI::App& command, std::string& path);
+
+// Loads the scene named on a command line (empty: the embedded Cornell box)
+// and applies the camera overrides (null: none); prints the warnings, then
+// any error, and returns its exit code (exit_ok when loaded).
+int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s);
+
+}  // namespace bounce

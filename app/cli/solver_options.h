@@ -1,0 +1,28 @@
+// The solver options of every command that solves (view, render, trace,
+// solve): they set the core's solver settings directly, and are checked
+// against the solver and form-factor method they apply to.
+#pragma once
+
+#include <span>
+#include <string>
+
+#include "radiosity/solver_settings.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace bounce {
+
+void add_solver_options(CLI::App& command, solver_settings& settings);
+
+// The names of the options add_solver_options adds, for messages about
+// options that a combination ignores (given_options).
+std::span<const char* const> solver_option_names();
+
+// Solver options that the chosen solver or form-factor method ignores; an
+// error message or an empty string. Options of the progressive solver
+// alone choose it (settings.method) unless another was asked for by name.
+std::string check_solver_options(const CLI::App& command, solver_settings& settings);
+
+}  // namespace bounce

@@ -1,0 +1,78 @@
+// The mesh and its solution as the renderer's GL buffers take them: CPU
+// work on any thread, which mesh_renderer uploads. Neither this header nor
+// its source includes GL, so that the window's solver thread
+// (viewer/solver_worker.h) builds them without depending on the renderer.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/patch_mesh.h"
+#include "radiosity/radiosity.h"
+#include "render/curved_display.h"
+#include "scene/scene.h"
+
+namespace bounce::gl {
+
+// The elements of one material that needs more than the plain Gouraud
+// program: a texture, or mirror and glass (then one run per surface, the
+// surface's reflection probe). A range of mesh_arrays::indices.
+struct material_run {
+  int texture = -1;         // index into the scene's textures, or -1
+  int probe = -1;           // index into mesh_arrays::probes, or -1
+  glm::vec3 emitted{0.0f};  // the material's ke: the part of B the texture leaves alone
+  std::size_t first = 0;    // first index
+  std::size_t count = 0;    // indices
+};
+
+// A specular surface (kr or kt > 0) as the live view approximates it: the
+// scene seen from the surface's centre in a cube map (reflection_probes.h).
+struct specular_surface {
+  int surface = -1;
+  glm::vec3 centre{0.0f};  // of the surface's bounding box
+  float radius = 0.0f;     // of the sphere about the centre through its farthest vertex
+  bool thin = false;       // a sheet (a pane, a mirror): light goes straight through
+  bool solid = false;      // bounds a solid, wound outward (closed_surface.h): back faces culled from outside
+  glm::vec3 kr{0.0f}, kt{0.0f};
+  float ior = 1.0f;
+  bool fresnel = false;
+  glm::vec3 specular{0.0f};  // Phong highlight of the point lights
+  float shininess = 0.0f;
+};
+
+// The mesh as the renderer's buffers take it: interleaved position,
+// normal, reflectance, element size and uv per vertex, and the triangles:
+// those of plain materials first, in the mesh's order, then one run per
+// textured or specular material. Curved surfaces are drawn finer than the
+// solver's elements (curved_display.h): the display vertices past the
+// mesh's own take blends of the solution's. Plain CPU work: the window
+// builds it on the solver's thread, so that a large mesh's arrival costs
+// the UI thread only the copy into GL.
+struct mesh_arrays {
+  static constexpr std::size_t floats_per_vertex = 12;
+  std::vector<float> vertices;  // floats_per_vertex a vertex
+  std::vector<unsigned int> indices;
+  std::size_t vertex_count = 0;           // display vertices
+  std::size_t solution_vertex_count = 0;  // the mesh's vertices, the first of them
+  std::vector<vertex_blend> blends;       // the rest, as blends of the first
+  float largest_element = 0.0f;
+  std::size_t plain_count = 0;    // indices drawn by the plain program
+  std::size_t outline_first = 0;  // then the elements' edges, pairs of indices (the wireframe)
+  std::vector<material_run> runs;
+  std::vector<specular_surface> probes;
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+  // The scene the mesh was made from: its textures and background. Held so
+  // that the renderer uploads a scene's textures once, not once per mesh.
+  std::shared_ptr<const scene> source;
+};
+// `source` may be null: then nothing is textured and the background is black.
+mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source);
+
+// A solution as the renderer's dynamic buffer takes it: radiosity, then
+// the unshot (false colour) per vertex, in float. CPU work, any thread.
+std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot);
+
+}  // namespace bounce::gl
