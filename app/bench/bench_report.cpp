@@ -92,7 +92,7 @@ std::vector<std::vector<bool>> front_of(const scene_curves& sc, bool radiosity_o
 void write_csv(const json& results, const std::string& out_dir) {
   std::ofstream out(fs::path(out_dir) / "bench.csv");
   out << "scene,curve,method,solver,shadow_rays,hemicube_resolution,max_edge,patch_edge,elements,vertices,patches,"
-         "run_wall_seconds,run_cpu_seconds,peak_mib,seconds,cpu_seconds,shots,rays,unshot_fraction,error,max_error,"
+         "run_wall_seconds,run_cpu_seconds,peak_mib,seconds,cpu_seconds,steps,rays,remaining,error,max_error,"
          "power_error,balance_error,residual,pareto\n";
   const auto by_scene = curves_by_scene(results);
   std::map<const json*, std::vector<bool>> fronts;
@@ -115,8 +115,8 @@ void write_csv(const json& results, const std::string& out_dir) {
             << cell(c["max_edge"]) << "," << cell(c["patch_edge"]) << "," << cell(c["elements"]) << ","
             << cell(c["vertices"]) << "," << cell(c["patches"]) << "," << cell(c["wall_seconds"]) << ","
             << cell(c["cpu_seconds"]) << "," << cell(c["peak_mib"]) << "," << cell(p["seconds"]) << ","
-            << cell(p["cpu_seconds"]) << "," << cell(p["shots"]) << "," << cell(p["rays"]) << ","
-            << cell(p["unshot_fraction"]) << "," << cell(p["error"]) << "," << cell(p["max_error"]) << ","
+            << cell(p["cpu_seconds"]) << "," << cell(p["steps"]) << "," << cell(p["rays"]) << ","
+            << cell(p["remaining"]) << "," << cell(p["error"]) << "," << cell(p["max_error"]) << ","
             << cell(p["power_error"]) << "," << cell(p["balance_error"]) << "," << cell(p.value("residual", json()))
             << "," << (i < flags.size() && flags[i] ? 1 : 0) << "\n";
         ++i;
@@ -219,11 +219,11 @@ void growth_section(const json& results, std::ostringstream& md) {
     if (!c.value("growth", false) || c["curves"].empty() || c["curves"][0]["points"].empty()) continue;
     const json& last = last_point(c["curves"][0]);
     const double n = number(c["elements"]);
-    const bool reached = number(last["unshot_fraction"]) <= 0.01;
+    const bool reached = number(last["remaining"]) <= 0.01;
     elements.push_back(n);
     setup.push_back(number(c["setup_seconds"]));
     first.push_back(number(c["first_picture_seconds"]));
-    per_shot.push_back(number(c["seconds_per_shot"]));
+    per_shot.push_back(number(c["seconds_per_step"]));
     to_one_percent.push_back(reached ? number(last["seconds"]) : not_measured);
     memory.push_back(number(c["run_mib"]));
     rows << "| " << c["elements"].get<std::size_t>() << " | " << format("%g", number(c["max_edge"])) << " | "
@@ -231,7 +231,7 @@ void growth_section(const json& results, std::ostringstream& md) {
          << format("%.2e", per_shot.back()) << " | "
          << (reached ? format("%.2f", to_one_percent.back())
                      : "not in " + format("%.0f", number(last["seconds"])) + " s (" +
-                           percent(number(last["unshot_fraction"])) + " left)")
+                           percent(number(last["remaining"])) + " left)")
          << " | " << format("%.0f", number(c["peak_mib"])) << " | " << format("%.1f", memory.back()) << " |\n";
   }
   if (elements.empty()) return;
@@ -376,7 +376,7 @@ void scale_section(const json& results, std::ostringstream& md) {
   md << "\n## Scale (procedural scenes; times from the built scene, meshing and set-up included; error of the "
         "solver's own picture, not two-pass)\n\n"
      << "| scene | solver | triangles | elements | first picture s | to 10% s | to 5% s | to 2% s | final error | "
-        "unshot | time s | peak MiB | links |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "remaining | time s | peak MiB | links |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   std::map<std::string, std::vector<double>> triangles, to_10, to_5;  // per solver
   for (const json& c : results["cases"]) {
     if (c.value("thread_limit", 0) > 0 || c.value("solver", "") == "path") continue;
@@ -394,7 +394,7 @@ void scale_section(const json& results, std::ostringstream& md) {
     md << c.value("triangles", std::size_t(0)) << " | " << c["elements"].get<std::size_t>() << " | "
        << format("%.3g", number(c["first_picture_seconds"])) << " | " << time_to(c, 0.1) << " | " << time_to(c, 0.05)
        << " | " << time_to(c, 0.02) << " | " << percent(number(last["error"])) << " | "
-       << percent(number(last["unshot_fraction"])) << " | " << format("%.3g", number(last["seconds"])) << " | "
+       << percent(number(last["remaining"])) << " | " << format("%.3g", number(last["seconds"])) << " | "
        << format("%.0f", number(c["peak_mib"])) << " | "
        << (solver == "hierarchical" ? std::to_string(c.value("links", std::uint64_t(0))) : "-") << " |\n";
   }
@@ -412,7 +412,7 @@ void scale_section(const json& results, std::ostringstream& md) {
   double reference_seconds = 0.0;
   for (const json& note : results["references"]) reference_seconds += number(note.value("seconds", json(0.0)));
   md << " '-': fewer than two scenes reached it. Peak MiB is the run's process, the picture judge's ray-tracing "
-        "BVH included; unshot is the residual (hierarchical) or unshot power (progressive) left at the end, '-' "
+        "BVH included; remaining is the residual (hierarchical) or the unshot power (progressive) left at the end, '-' "
         "when not finite. The path-traced references took "
      << format("%.0f", reference_seconds) << " s of the suite's time (0: cached).\n";
 
@@ -428,12 +428,12 @@ void scale_section(const json& results, std::ostringstream& md) {
   for (const json& c : results["cases"]) any = any || c.value("thread_limit", 0) > 0;
   if (!any) return;
   md << "\n### Threads\n\n"
-     << "| scene | solver | threads | to 10% s | to 5% s | to 2% s | final error | unshot | shots | time s | "
+     << "| scene | solver | threads | to 10% s | to 5% s | to 2% s | final error | remaining | steps | time s | "
         "cores busy | stopped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
   auto stopped = [](const json& c) {
     const json& last = last_point(c["curves"][0]);
-    const bool converged = c.value("links_final", false) && number(last["unshot_fraction"]) <= number(c["until"]);
-    return converged ? "at " + percent(number(c["until"])) + " unshot" : "at the time limit";
+    const bool converged = c.value("links_final", false) && number(last["remaining"]) <= number(c["until"]);
+    return converged ? "at " + percent(number(c["until"])) + " remaining" : "at the time limit";
   };
   for (const json& c : results["cases"]) {
     if (c.value("thread_limit", 0) <= 0) continue;
@@ -445,8 +445,8 @@ void scale_section(const json& results, std::ostringstream& md) {
     }
     const json& last = last_point(c["curves"][0]);
     md << time_to(c, 0.1) << " | " << time_to(c, 0.05) << " | " << time_to(c, 0.02) << " | "
-       << percent(number(last["error"])) << " | " << percent(number(last["unshot_fraction"])) << " | "
-       << last["shots"].get<std::uint64_t>() << " | " << format("%.3g", number(last["seconds"])) << " | "
+       << percent(number(last["error"])) << " | " << percent(number(last["remaining"])) << " | "
+       << last["steps"].get<std::uint64_t>() << " | " << format("%.3g", number(last["seconds"])) << " | "
        << format("%.2f", number(c["cpu_seconds"]) / number(c["wall_seconds"])) << " | " << stopped(c) << " |\n";
   }
   if (runs.size() < 2) return;
@@ -465,8 +465,8 @@ void scale_section(const json& results, std::ostringstream& md) {
   md << " total time to the stopping point ";
   if (how_one == how_many && how_one != "at the time limit")
     md << format("%.2fx", number(last_one["seconds"]) / number(last_many["seconds"])) << " (both stopped " << how_one
-       << ", after " << last_one["shots"].get<std::uint64_t>() << " and " << last_many["shots"].get<std::uint64_t>()
-       << " operator applications)";
+       << ", after " << last_one["steps"].get<std::uint64_t>() << " and " << last_many["steps"].get<std::uint64_t>()
+       << " steps)";
   else
     md << "- (the runs stopped " << how_one << " and " << how_many << ")";
   md << ". Times to an error are interpolated between the measured stops. Cores busy: the run's CPU time over its "

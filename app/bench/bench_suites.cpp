@@ -41,7 +41,7 @@ bench_case progressive_case(const std::string& scene, form_factor_method method,
   c.settings.form_factors.hemicube_resolution = hemicube;
   c.settings.max_edge = edge;
   c.settings.patch_edge = patch_factor * edge;
-  c.settings.stop.unshot_fraction = until;
+  c.settings.stop.remaining = until;
   c.settings.stop.seconds = max_seconds;
   return c;
 }
@@ -99,7 +99,7 @@ bench_case hierarchical_case(const std::string& scene, double tolerance, double 
   c.settings.method = solver_method::hierarchical;
   c.settings.link_tolerance = tolerance;
   c.settings.max_edge = edge;
-  c.settings.stop.unshot_fraction = until;
+  c.settings.stop.remaining = until;
   c.settings.stop.seconds = max_seconds;
   return c;
 }
@@ -111,7 +111,7 @@ bench_case default_case(const std::string& scene, solver_method method, double m
   c.scene = scene;
   c.settings = solver_settings{};
   c.settings.method = method;
-  c.settings.stop.unshot_fraction = 1e-3;
+  c.settings.stop.remaining = 1e-3;
   c.settings.stop.seconds = max_seconds;
   c.threads = threads;
   return c;
@@ -171,7 +171,7 @@ suite_plan make_suite(const std::string& suite) {
     plan.cases.push_back(hierarchical_case("furnace-0.99", solver_settings{}.link_tolerance, 60.0, 1e-5, 0.05));
     bench_case furnace = default_case("furnace-0.99", solver_method::progressive, 30.0);
     furnace.settings.max_edge = 0.05;
-    furnace.settings.stop.unshot_fraction = 1e-5;
+    furnace.settings.stop.remaining = 1e-5;
     plan.cases.push_back(furnace);
     plan.picture_size = 128;
     plan.reference_spp = 4096;
@@ -292,8 +292,8 @@ std::string curve_label(const bench_case& c, const std::string& curve_method) {
     std::snprintf(buffer, sizeof buffer, ", adaptive %g", c.settings.adaptive.tolerance);
     details += buffer;
   }
-  if (hierarchical && c.settings.stop.unshot_fraction != bench_case{}.settings.stop.unshot_fraction) {
-    std::snprintf(buffer, sizeof buffer, ", to %g", c.settings.stop.unshot_fraction);
+  if (hierarchical && c.settings.stop.remaining != bench_case{}.settings.stop.remaining) {
+    std::snprintf(buffer, sizeof buffer, ", to %g", c.settings.stop.remaining);
     details += buffer;
   }
   if (c.threads > 0) details += c.threads == 1 ? ", 1 thread" : ", " + std::to_string(c.threads) + " threads";

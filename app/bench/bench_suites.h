@@ -28,7 +28,7 @@ struct bench_case {
   solver_settings settings = [] {
     solver_settings d;
     d.patch_edge = 0.0;
-    d.stop.unshot_fraction = 1e-3;
+    d.stop.remaining = 1e-3;
     d.stop.seconds = 10.0;
     return d;
   }();

@@ -65,19 +65,27 @@ void progress_line::done() {
   drawn_ = false;
 }
 
-double solve_progress(double unshot_fraction, double until, double seconds, double time_limit) {
+double solve_progress(double remaining, double until, double seconds, double time_limit) {
   double p = 0.0;
-  if (until > 0.0 && until < 1.0 && unshot_fraction > 0.0)
-    p = std::log(std::min(1.0, unshot_fraction)) / std::log(until);
-  else if (unshot_fraction <= until)
+  if (until > 0.0 && until < 1.0 && remaining > 0.0)
+    p = std::log(std::min(1.0, remaining)) / std::log(until);
+  else if (remaining <= until)
     p = 1.0;
   if (time_limit > 0.0) p = std::max(p, seconds / time_limit);
   return std::clamp(std::isfinite(p) ? p : 0.0, 0.0, 1.0);
 }
 
-std::string unshot_text(double unshot_fraction) {
+std::string_view steps_word(solver_method method) {
+  return method == solver_method::progressive ? "shots" : "steps";
+}
+
+std::string_view remaining_word(solver_method method) {
+  return method == solver_method::progressive ? "unshot" : "residual";
+}
+
+std::string remaining_text(solver_method method, double remaining) {
   char text[48];
-  std::snprintf(text, sizeof text, "unshot %.3g%%", 100.0 * unshot_fraction);
+  std::snprintf(text, sizeof text, "%s %.3g%%", std::string(remaining_word(method)).c_str(), 100.0 * remaining);
   return text;
 }
 

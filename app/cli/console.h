@@ -6,6 +6,9 @@
 #include <chrono>
 #include <cstdarg>
 #include <string>
+#include <string_view>
+
+#include "radiosity/solver_settings.h"
 
 namespace bounce {
 
@@ -16,7 +19,7 @@ bool quiet();
 // printf to stdout unless quiet.
 void say(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
-// "solving [#####.....] 48%  unshot 0.3%  2.1 s", redrawn in place at most
+// "solving [#####.....] 48%  residual 0.3%  2.1 s", redrawn in place at most
 // ten times a second; erased by done() (or the destructor) so that the
 // report that follows starts on a clean line.
 class progress_line {
@@ -39,12 +42,18 @@ class progress_line {
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-// How far a solve is from its stopping point, in [0, 1]: the unshot power
-// (or residual) on a log scale from 1 down to `until`, or the time limit
-// when that is nearer.
-double solve_progress(double unshot_fraction, double until, double seconds, double time_limit);
+// How far a solve is from its stopping point, in [0, 1]: the remaining
+// fraction on a log scale from 1 down to `until`, or the time limit when
+// that is nearer.
+double solve_progress(double remaining, double until, double seconds, double time_limit);
 
-// "unshot 0.312%": the detail of a solve's progress line.
-std::string unshot_text(double unshot_fraction);
+// What a solver's steps and remaining fraction are called where a user
+// reads them: "shots" and "unshot" for the progressive solver, "steps"
+// and "residual" for the hierarchical one (solution.h says what each is).
+std::string_view steps_word(solver_method method);
+std::string_view remaining_word(solver_method method);
+
+// "residual 0.312%": the detail of a solve's progress line.
+std::string remaining_text(solver_method method, double remaining);
 
 }  // namespace bounce

@@ -18,7 +18,7 @@
 #include "headless/offscreen_view.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solve.h"
 #include "scene/camera_math.h"
 #include "viewer/panel.h"
 
@@ -62,10 +62,13 @@ void add_render_options(CLI::App& command, render_options& options) {
       ->capture_default_str();
   command.add_flag("--wireframe", options.wireframe, "draw element edges");
   command.add_option("--stats", options.stats_path, "write solver statistics as JSON to this file");
-  command.add_flag("--ambient", options.ambient, "add the ambient term of the unshot power (display only)");
+  command.add_flag("--ambient", options.ambient,
+                   "add the ambient term of the power still to go (unshot, or the residual; display only)");
   command.add_flag("--panel", options.panel, "draw the ImGui panel over the view, as in the window");
-  command.add_option("--colours", options.colours, "radiance, or false colour of unshot power or element size")
-      ->check(CLI::IsMember({"radiance", "unshot", "size"}))
+  command
+      .add_option("--colours", options.colours,
+                  "radiance, or false colour of the remaining power (unshot, or the residual) or element size")
+      ->check(CLI::IsMember({"radiance", "remaining", "size"}))
       ->capture_default_str();
   command
       .add_option("--msaa", options.msaa, "antialiasing samples per pixel; 0 draws as the window does on software GL")
@@ -96,14 +99,14 @@ int run_render(const render_options& options) {
 
 int render_scene(const scene& s, const render_options& options) {
   const solver_settings& solver = options.solver;
-  patch_mesh mesh;
+  solve_setup setup;
   std::string error;
-  const auto mesh_start = std::chrono::steady_clock::now();
-  if (!make_patch_mesh(s, mesher_params_for(solver, s), mesh, error)) {
+  if (!start_solve(s, solver, setup, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
     return exit_input_error;
   }
-  const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count();
+  const patch_mesh& mesh = *setup.mesh;
+  radiosity_solver& run = *setup.solver;
   warn_about_mesh(s, mesh);
   headless::offscreen_view view(s.view.width, s.view.height, options.msaa);
   if (!view.ok()) {
@@ -120,13 +123,12 @@ int render_scene(const scene& s, const render_options& options) {
   settings.curve = options.curve == "filmic" ? gl::tone_curve::filmic : gl::tone_curve::srgb;
   settings.wireframe = options.wireframe;
   settings.ambient = options.ambient;
-  settings.colours = options.colours == "unshot" ? gl::false_colour::unshot
-                     : options.colours == "size" ? gl::false_colour::element_size
-                                                 : gl::false_colour::none;
+  settings.colours = options.colours == "remaining" ? gl::false_colour::remaining
+                     : options.colours == "size"    ? gl::false_colour::element_size
+                                                    : gl::false_colour::none;
 
   // The panel, headless: ImGui needs no platform backend, only a display
   // size and a few frames to lay its windows out.
-  std::unique_ptr<radiosity_state> state;
   convergence_log history;
   struct imgui_scope {
     bool active = false;
@@ -148,9 +150,8 @@ int render_scene(const scene& s, const render_options& options) {
     overlay = [&] {
       worker_view v;
       v.source = std::shared_ptr<const scene>(&s, [](const scene*) {});
-      v.mesh = state->refined_mesh ? state->refined_mesh
-                                   : std::shared_ptr<const patch_mesh>(&mesh, [](const patch_mesh*) {});
-      v.solution = make_snapshot(*state);
+      v.mesh = refined_mesh(run) ? refined_mesh(run) : setup.mesh;
+      v.solution = make_snapshot(run);
       v.history = history;
       v.converged = true;
       v.settings = solver;
@@ -187,48 +188,47 @@ int render_scene(const scene& s, const render_options& options) {
       return exit_input_error;
     }
   }
-  state = make_radiosity_state(s, mesh, radiosity_params_for(solver));
-  // The solution on screen; adaptive meshing brings a refined mesh to upload first.
+  // The solution on screen; a refined mesh is uploaded first.
   const patch_mesh* shown_mesh = &mesh;
-  auto show = [&](const radiosity_state& st) {
-    if (st.mesh != shown_mesh) {
-      view.renderer().upload(*st.mesh, source);
-      shown_mesh = st.mesh;
+  auto show = [&](const radiosity_solver& st) {
+    if (&solved_mesh(st) != shown_mesh) {
+      shown_mesh = &solved_mesh(st);
+      view.renderer().upload(*shown_mesh, source);
     }
     view.renderer().update(*make_snapshot(st));
   };
   bool frames_ok = true;
   std::size_t frames = 0;
   std::uint64_t next_frame = 1, last_frame_step = ~std::uint64_t(0);
-  auto write_numbered_frame = [&](const radiosity_state& st) {
+  auto write_numbered_frame = [&](const radiosity_solver& st) {
     show(st);
     char name[64];
-    // Named by step (shots and refinement passes), so that no frame overwrites another.
-    last_frame_step = st.stats.shots + st.stats.refinements;
+    // Named by steps and refinement passes, so that no frame overwrites another.
+    last_frame_step = st.stats.steps + st.stats.refinements;
     std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(last_frame_step));
     frames_ok = write_frame((std::filesystem::path(options.frames_dir) / name).string());
     ++frames;
   };
   progress_line progress("solving");
-  run_radiosity(*state, solver.stop, [&](const radiosity_state& st) {
-    progress.update(
-        solve_progress(st.stats.unshot_fraction, solver.stop.unshot_fraction, st.stats.seconds, solver.stop.seconds),
-        unshot_text(st.stats.unshot_fraction));
-    if (options.panel) history.push_back({st.stats.seconds, st.stats.unshot_fraction});
-    if (options.frames_dir.empty() || !frames_ok || st.stats.shots == 0) return;
-    // A fixed spacing, or doubling counts: the early shots change the picture most.
-    const bool due = options.frame_every > 0 ? st.stats.shots % std::uint64_t(options.frame_every) == 0
-                                             : st.stats.shots >= next_frame;
+  const solver_method method = method_of(run);
+  run_solver(run, solver.stop, [&](const radiosity_solver& st) {
+    progress.update(solve_progress(st.stats.remaining, solver.stop.remaining, st.stats.seconds, solver.stop.seconds),
+                    remaining_text(method, st.stats.remaining));
+    if (options.panel) history.push_back({st.stats.seconds, st.stats.remaining});
+    if (options.frames_dir.empty() || !frames_ok || st.stats.steps == 0) return;
+    // A fixed spacing, or doubling counts: the early steps change the picture most.
+    const bool due = options.frame_every > 0 ? st.stats.steps % std::uint64_t(options.frame_every) == 0
+                                             : st.stats.steps >= next_frame;
     if (!due) return;
-    while (next_frame <= st.stats.shots) next_frame *= 2;
+    while (next_frame <= st.stats.steps) next_frame *= 2;
     write_numbered_frame(st);
   });
   progress.done();
-  if (frames_ok && !options.frames_dir.empty() && last_frame_step != state->stats.shots + state->stats.refinements)
-    write_numbered_frame(*state);  // and the converged picture
+  if (frames_ok && !options.frames_dir.empty() && last_frame_step != run.stats.steps + run.stats.refinements)
+    write_numbered_frame(run);  // and the converged picture
   if (!frames_ok) return exit_input_error;
 
-  show(*state);
+  show(run);
   const std::optional<picture_format> format = picture_format_of(options.out_path);
   if (format && is_linear(*format)) {
     if (!write_picture(options.out_path, view.render_linear(view_projection, eye, settings), 1.0, error)) {
@@ -238,8 +238,9 @@ int render_scene(const scene& s, const render_options& options) {
   } else if (!write_frame(options.out_path)) {
     return exit_input_error;
   }
-  say("solved: %llu shots, unshot %.4f%%, %zu elements, %.3f s\n", static_cast<unsigned long long>(state->stats.shots),
-      100.0 * state->stats.unshot_fraction, state->mesh->element_count(), state->stats.seconds);
+  say("solved: %llu %s, %s %.4f%%, %zu elements, %.3f s\n", static_cast<unsigned long long>(run.stats.steps),
+      std::string(steps_word(method)).c_str(), std::string(remaining_word(method)).c_str(), 100.0 * run.stats.remaining,
+      solved_mesh(run).element_count(), run.stats.seconds);
   say("wrote %s (%dx%d%s)\n", std::filesystem::absolute(options.out_path).string().c_str(), s.view.width, s.view.height,
       format && is_linear(*format) ? ", linear radiance" : "");
   if (!options.pfm_path.empty()) {
@@ -251,7 +252,7 @@ int render_scene(const scene& s, const render_options& options) {
   }
   if (frames) say("wrote %zu frames to %s\n", frames, options.frames_dir.c_str());
   if (!options.stats_path.empty()) {
-    if (!write_stats(options.stats_path, solver_stats_json(s, solver, mesh, *state, mesh_seconds), error)) {
+    if (!write_stats(options.stats_path, solver_stats_json(s, solver, mesh, run, setup.mesh_seconds), error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }

@@ -27,7 +27,7 @@ struct render_options {
   bool wireframe = false;
   bool ambient = false;
   bool panel = false;                // draw the ImGui panel over the view, as the window shows it
-  std::string colours = "radiance";  // radiance | unshot | size (false colour)
+  std::string colours = "radiance";  // radiance | remaining | size (false colour)
   std::string stats_path;            // --stats: solver statistics as JSON
   int msaa = 4;                      // samples per pixel; 0 or 1: none
 };

@@ -36,10 +36,15 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       .add_option("--max-edge", o.max_edge,
                   "longest element edge, scene units (default: diagonal/10, split while solving; progressive: /24)")
       ->check(number_in(0.0, INFINITY, true));
-  command.add_option("--until", o.stop.unshot_fraction, "stop when the unshot power fraction falls below this")
+  command
+      .add_option("--until", o.stop.remaining,
+                  "stop when the remaining fraction of the power falls below this (hierarchical: the residual, "
+                  "once the links are final; progressive: the unshot power)")
       ->check(number_in(0.0, 1.0))
       ->capture_default_str();
-  command.add_option("--max-shots", o.stop.max_shots, "stop after this many shots (0: no limit)")
+  command
+      .add_option("--max-steps", o.stop.max_steps,
+                  "stop after this many steps (hierarchical: its steps; progressive: shots); 0: no limit")
       ->check(count_at_most(std::numeric_limits<std::uint64_t>::max()));
   command.add_option("--time", o.stop.seconds, "stop after this many seconds of solving (0: no limit)")
       ->check(number_in(0.0, INFINITY));
@@ -70,7 +75,7 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->capture_default_str()
       ->needs(adaptive);
   command
-      .add_option("--min-edge", o.adaptive.min_edge,
+      .add_option("--min-edge", o.min_edge,
                   "hierarchical and --adaptive: elements whose longest edge is at most this are not split "
                   "(default: max edge / 8)")
       ->check(number_in(0.0, INFINITY, true));
@@ -78,7 +83,7 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
 
 std::span<const char* const> solver_option_names() {
   static constexpr const char* names[] = {"--solver",     "--link-tolerance", "--mirror-depth", "--method",
-                                          "--max-edge",   "--until",          "--max-shots",    "--time",
+                                          "--max-edge",   "--until",          "--max-steps",    "--time",
                                           "--patch-edge", "--full-rays",      "--rays",         "--hemicube",
                                           "--adaptive",   "--tolerance",      "--min-edge"};
   return names;

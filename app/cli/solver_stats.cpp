@@ -18,22 +18,23 @@ nlohmann::json to_json(const rgb& c) {
 }  // namespace
 
 nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings, const patch_mesh& meshed,
-                                 const radiosity_state& state, double mesh_seconds) {
-  const radiosity_stats& st = state.stats;
-  const power_balance& pb = state.balance;
-  const patch_mesh& solved = *state.mesh;  // refined, with adaptive meshing
+                                 const radiosity_solver& solver, double mesh_seconds) {
+  const solver_stats& st = solver.stats;
+  const progressive_state* progressive = progressive_of(solver);
+  const patch_mesh& solved = solved_mesh(solver);  // refined, with adaptive meshing or split elements
   nlohmann::json passes = nlohmann::json::array();
-  for (const refinement_pass& pass : state.adaptive.history)
-    passes.push_back({{"unshot_fraction", pass.unshot_fraction},
-                      {"gradient_marks", pass.gradient},
-                      {"shadow_marks", pass.shadow},
-                      {"elements_before", pass.elements_before},
-                      {"elements_after", pass.elements_after},
-                      {"new_vertices", pass.new_vertices},
-                      {"seconds", pass.seconds}});
+  if (progressive)
+    for (const refinement_pass& pass : progressive->adaptive.history)
+      passes.push_back({{"unshot_fraction", pass.unshot_fraction},
+                        {"gradient_marks", pass.gradient},
+                        {"shadow_marks", pass.shadow},
+                        {"elements_before", pass.elements_before},
+                        {"elements_after", pass.elements_after},
+                        {"new_vertices", pass.new_vertices},
+                        {"seconds", pass.seconds}});
   nlohmann::json out = {
       {"scene", s.source},
-      {"solver", name_of(state.hierarchy ? solver_method::hierarchical : solver_method::progressive)},
+      {"solver", name_of(method_of(solver))},
       {"max_edge", solved.max_edge},
       {"elements", solved.element_count()},
       {"elements_meshed", meshed.element_count()},
@@ -43,16 +44,15 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
       {"refinement_passes", passes},
       {"patch_edge", mesher_params_for(settings, s).patch_edge},
       {"mesh_seconds", mesh_seconds},
-      {"shots", st.shots},
-      {"unshot_fraction", st.unshot_fraction},
+      {"steps", st.steps},
+      {"remaining", st.remaining},
       {"seconds", st.seconds},
       {"rays", st.rays},
       // What the run could use: one per core, or --threads.
       {"threads", tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)},
   };
-  if (state.hierarchy) {
-    // The residual stands for the unshot power: what one more iteration would still move.
-    const hierarchical_solver& h = *state.hierarchy;
+  if (const hierarchical_solver* hierarchical = hierarchical_of(solver)) {
+    const hierarchical_solver& h = *hierarchical;
     out["hierarchical"] = {{"links", h.hierarchy.links.size()},
                            {"link_bytes", h.hierarchy.links.size() * sizeof(hierarchy_link)},
                            // Links through chains of planar mirrors (not in "links").
@@ -72,9 +72,10 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                            {"specular_passes", h.progress.specular_passes},
                            {"specular_shot_fraction", h.progress.specular_shot_fraction},
                            {"warning", h.progress.warning}};
-    out["power"] = {{"emitted", to_json(pb.emitted)}};
+    out["power"] = {{"emitted", to_json(rgb(h.sources.emitted_power / 3.0))}};
     return out;
   }
+  const power_balance& pb = progressive->balance;
   out["method"] = name_of(settings.form_factors.method);
   out["power_balance_error"] = balance_error(pb);
   out["power"] = {{"emitted", to_json(pb.emitted)},

@@ -7,16 +7,17 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solver.h"
 #include "radiosity/solver_settings.h"
 #include "scene/scene.h"
 
 namespace bounce {
 
-// Mesh, settings, shots, time and the power balance of a finished run.
-// `meshed` is the mesh as the mesher built it (the state's may be refined).
+// Mesh, settings, steps, time, and what each solver keeps of its own (the
+// progressive power balance, the hierarchical links) of a finished run.
+// `meshed` is the mesh as the mesher built it (the solver's may be refined).
 nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings, const patch_mesh& meshed,
-                                 const radiosity_state& state, double mesh_seconds);
+                                 const radiosity_solver& solver, double mesh_seconds);
 
 // Warns on standard error about what the mesher had to leave imperfect
 // (non-manifold faces, coplanar overlaps it could not cut).

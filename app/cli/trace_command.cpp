@@ -18,11 +18,11 @@
 #include "cli/solver_stats.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
-#include "trace/radiosity_field.h"
+#include "radiosity/solve.h"
 #include "scene/camera_math.h"
 #include "scene/obj_io.h"
 #include "scene/scene_info.h"
+#include "trace/radiosity_field.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {
@@ -32,29 +32,26 @@ using clock_type = std::chrono::steady_clock;
 
 struct solved {
   solver_settings settings;  // what it was solved with (the coarse pass has its own)
-  patch_mesh mesh;
-  std::unique_ptr<radiosity_state> state;
-  double mesh_seconds = 0.0;
+  solve_setup setup;
+  std::shared_ptr<const radiosity_snapshot> solution;
 };
 
-// Meshes and runs the progressive solver to the options' criterion.
+// Meshes and runs the solver to the options' criterion.
 bool solve(const scene& s, const solver_settings& solver, solved& out) {
   out.settings = solver;
   std::string error;
-  const auto mesh_start = clock_type::now();
-  if (!make_patch_mesh(s, mesher_params_for(solver, s), out.mesh, error)) {
+  if (!start_solve(s, solver, out.setup, error)) {
     std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
     return false;
   }
-  out.mesh_seconds = std::chrono::duration<double>(clock_type::now() - mesh_start).count();
-  warn_about_mesh(s, out.mesh);
-  out.state = make_radiosity_state(s, out.mesh, radiosity_params_for(solver));
+  warn_about_mesh(s, *out.setup.mesh);
   progress_line progress("solving");
-  run_radiosity(*out.state, solver.stop, [&](const radiosity_state& st) {
-    progress.update(
-        solve_progress(st.stats.unshot_fraction, solver.stop.unshot_fraction, st.stats.seconds, solver.stop.seconds),
-        unshot_text(st.stats.unshot_fraction));
+  const solver_method method = method_of(*out.setup.solver);
+  run_solver(*out.setup.solver, solver.stop, [&](const radiosity_solver& st) {
+    progress.update(solve_progress(st.stats.remaining, solver.stop.remaining, st.stats.seconds, solver.stop.seconds),
+                    remaining_text(method, st.stats.remaining));
   });
+  out.solution = make_snapshot(*out.setup.solver);
   return true;
 }
 
@@ -226,11 +223,13 @@ int trace_scene(const scene& s, const trace_options& options) {
   std::unique_ptr<radiosity_field> field;
   if ((params.method == integrator::whitted && !options.no_radiosity) || gathered) {
     if (!solve(s, solver, pass)) return exit_input_error;
-    say("radiosity: %zu elements, %llu shots, unshot %.3f%%, %.3f s\n", pass.state->mesh->element_count(),
-        static_cast<unsigned long long>(pass.state->stats.shots), 100.0 * pass.state->stats.unshot_fraction,
-        pass.state->stats.seconds);
-    field = std::make_unique<radiosity_field>(*pass.state->mesh, pass.state->radiosity, pass.state->direct,
-                                              ambient_radiosity(*pass.state), pass.state->caustic);
+    const radiosity_solver& run = *pass.setup.solver;
+    const solver_method method = method_of(run);
+    say("radiosity: %zu elements, %llu %s, %s %.3f%%, %.3f s\n", solved_mesh(run).element_count(),
+        static_cast<unsigned long long>(run.stats.steps), std::string(steps_word(method)).c_str(),
+        std::string(remaining_word(method)).c_str(), 100.0 * run.stats.remaining, run.stats.seconds);
+    field = std::make_unique<radiosity_field>(solved_mesh(run), pass.solution->radiosity, pass.solution->direct,
+                                              pass.solution->ambient, pass.solution->caustic);
   } else if (params.method == integrator::whitted) {
     params.diffuse = diffuse_source::ambient;
     if (options.ambient) {
@@ -241,7 +240,7 @@ int trace_scene(const scene& s, const trace_options& options) {
       // (the hierarchical solver's default is already 2.4x the progressive one's).
       if (coarse.max_edge <= 0.0) coarse.max_edge = 2.0 * mesher_params_for(solver, s).max_edge;
       if (!solve(s, coarse, pass)) return exit_input_error;
-      params.ambient_irradiance = mean_indirect_irradiance(*pass.state);
+      params.ambient_irradiance = mean_indirect_irradiance(solved_mesh(*pass.setup.solver), *pass.solution);
     }
     say("one pass: ambient irradiance %.4g %.4g %.4g\n", params.ambient_irradiance.r, params.ambient_irradiance.g,
         params.ambient_irradiance.b);
@@ -355,7 +354,9 @@ int trace_scene(const scene& s, const trace_options& options) {
     }
     // The radiosity pass, when the still used one (two-pass, or the coarse
     // solution a one-pass ambient term came from).
-    if (pass.state) out["radiosity"] = solver_stats_json(s, pass.settings, pass.mesh, *pass.state, pass.mesh_seconds);
+    if (pass.setup.solver)
+      out["radiosity"] =
+          solver_stats_json(s, pass.settings, *pass.setup.mesh, *pass.setup.solver, pass.setup.mesh_seconds);
     if (!write_stats(options.stats_path, out, error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;

@@ -164,7 +164,7 @@ std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot) {
   std::vector<glm::vec3> colours(2 * n);
   for (std::size_t v = 0; v < n; ++v) {
     colours[v] = glm::vec3(snapshot.radiosity[v]);
-    colours[n + v] = glm::vec3(snapshot.unshot_vertex[v]);
+    colours[n + v] = glm::vec3(snapshot.remaining[v]);
   }
   return colours;
 }

@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solution.h"
 #include "render/curved_display.h"
 #include "scene/scene.h"
 
@@ -72,7 +72,8 @@ struct mesh_arrays {
 mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source);
 
 // A solution as the renderer's dynamic buffer takes it: radiosity, then
-// the unshot (false colour) per vertex, in float. CPU work, any thread.
+// the remaining radiosity (false colour) per vertex, in float. CPU work,
+// any thread.
 std::vector<glm::vec3> solution_colours(const radiosity_snapshot& snapshot);
 
 }  // namespace bounce::gl

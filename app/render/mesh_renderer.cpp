@@ -193,7 +193,7 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   glEnableVertexAttribArray(6);
   glVertexAttribPointer(6, 2, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<const void*>(std::uintptr_t(10 * sizeof(float))));
-  // Dynamic: radiosity then unshot, two blocks, rewritten every step.
+  // Dynamic: radiosity then remaining, two blocks, rewritten every step.
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_buffer_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertex_count_ * 6 * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
   glEnableVertexAttribArray(3);

@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solution.h"
 #include "render/curved_display.h"
 #include "render/mesh_arrays.h"
 #include "render/reflection_probes.h"
@@ -19,7 +19,7 @@
 namespace bounce::gl {
 
 enum class tone_curve : int { srgb = 0, filmic = 1, linear = 2 };
-enum class false_colour : int { none = 0, unshot = 1, element_size = 2 };
+enum class false_colour : int { none = 0, remaining = 1, element_size = 2 };
 
 struct display_settings {
   double exposure = 1.0;  // displayed value = radiance x exposure
@@ -47,7 +47,7 @@ class mesh_renderer {
   }
   void upload(const mesh_arrays& arrays);
 
-  // Updates the per-vertex radiosity and unshot buffers in place
+  // Updates the per-vertex radiosity and remaining buffers in place
   // (glBufferSubData), converting to float. The snapshot must belong to the
   // uploaded mesh (the caller uploads a refined mesh first); one of another
   // size is ignored.

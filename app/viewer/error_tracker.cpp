@@ -50,7 +50,7 @@ void error_tracker::observe(const worker_view& view, const std::string& setting)
     if (version != last_version_) run_recorded_ = false;
     last_version_ = version;
     if (view.converged && !run_recorded_) {
-      runs_[setting] = {view.solution->stats.seconds, view.solution->stats.unshot_fraction, not_measured};
+      runs_[setting] = {view.solution->stats.seconds, view.solution->stats.remaining, not_measured};
       run_recorded_ = true;
     }
     // Each solution once; a new reference measures the current one again.

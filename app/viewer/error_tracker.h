@@ -2,7 +2,7 @@
 // the current camera is made in the background; from then on the solutions
 // the solver publishes are measured against it on the same background
 // thread (the newest one each time, so it never holds the solver up), and
-// the panel plots the error beside the unshot power. It also remembers the
+// the panel plots the error beside the remaining power. It also remembers the
 // time and error of the last finished run per solver setting. GL-free.
 #pragma once
 
@@ -26,8 +26,8 @@ struct error_point {
 };
 
 struct last_run {
-  double seconds = 0.0;  // solver time to the stopping criterion
-  double unshot_fraction = 0.0;
+  double seconds = 0.0;         // solver time to the stopping criterion
+  double remaining = 0.0;       // solver_stats::remaining
   double error = not_measured;  // against the reference, if there was one
 };
 

@@ -100,17 +100,17 @@ std::string setting_key(const solver_settings& o) {
   char key[200];
   if (o.method == solver_method::hierarchical) {
     std::snprintf(key, sizeof key, "hierarchical, link tolerance %g, edge %g, until %g", o.link_tolerance, o.max_edge,
-                  o.stop.unshot_fraction);
+                  o.stop.remaining);
     return key;
   }
   const bool hemicube = o.form_factors.method == form_factor_method::hemicube;
   std::snprintf(key, sizeof key, "progressive, %s %d, edge %g, patches %g, until %g",
                 std::string(name_of(o.form_factors.method)).c_str(),
                 hemicube ? o.form_factors.hemicube_resolution : o.form_factors.shadow_rays, o.max_edge, o.patch_edge,
-                o.stop.unshot_fraction);
+                o.stop.remaining);
   std::string text = key;
   if (o.adaptive.enabled) {
-    std::snprintf(key, sizeof key, ", adaptive %g, min edge %g", o.adaptive.tolerance, o.adaptive.min_edge);
+    std::snprintf(key, sizeof key, ", adaptive %g, min edge %g", o.adaptive.tolerance, o.min_edge);
     text += key;
   }
   return text;
@@ -194,7 +194,7 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
     std::snprintf(text, sizeof text, format, values...);
     lines.emplace_back(text);
   };
-  const radiosity_stats& st = view.solution->stats;
+  const solver_stats& st = view.solution->stats;
   const bool hierarchical = view.settings.method == solver_method::hierarchical;
   line("%s: %s", std::string(name_of(view.settings.method)).c_str(),
        view.converged ? "converged"
@@ -203,15 +203,15 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
   const double seconds = std::max(st.seconds, 1e-9);
   if (hierarchical) {
     line("elements %zu, vertices %zu", view.mesh->element_count(), view.mesh->vertex_count());
-    line("steps %llu, residual %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
-    if (st.shots == 0) {
+    line("steps %llu, residual %.4f%%", static_cast<unsigned long long>(st.steps), 100.0 * st.remaining);
+    if (st.steps == 0) {
       line("links: none yet (the first step makes them)");
     } else {
       // 16 bytes a link (hierarchy_link).
       line("links %llu (%.1f MiB)", static_cast<unsigned long long>(st.links),
            double(st.links) * 16.0 / (1024.0 * 1024.0));
       const std::string now = format_tolerance(st.link_tolerance);
-      if (st.links_final)
+      if (st.remaining_final)
         line("link tolerance %s, final", now.c_str());
       else
         line("link tolerance %s, refining to %s", now.c_str(), format_tolerance(view.settings.link_tolerance).c_str());
@@ -223,8 +223,8 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
     if (view.meshed_elements != view.mesh->element_count())
       line("adaptive: %zu elements as meshed, %llu refinement passes since", view.meshed_elements,
            static_cast<unsigned long long>(st.refinements));
-    line("shots %llu, unshot %.4f%%", static_cast<unsigned long long>(st.shots), 100.0 * st.unshot_fraction);
-    line("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.shots) / seconds, double(st.rays) / seconds * 1e-6,
+    line("shots %llu, unshot %.4f%%", static_cast<unsigned long long>(st.steps), 100.0 * st.remaining);
+    line("%.0f shots/s, %.2f Mrays/s, %.2f s", double(st.steps) / seconds, double(st.rays) / seconds * 1e-6,
          st.seconds);
   }
   line("frame %.1f ms", frame_ms);
@@ -341,13 +341,13 @@ void draw_form_factors(form_factor_params& ff) {
 // The stopping point, on a log scale shown as a percentage of the emitted
 // power (ImGui's format string: % doubled). Applies at once.
 void draw_stopping_point(stop_criterion& stop, bool hierarchical, panel_actions& act) {
-  float until = float(std::log10(std::max(stop.unshot_fraction, 1e-12)));
-  std::string shown_stop = format_percent(stop.unshot_fraction);
+  float until = float(std::log10(std::max(stop.remaining, 1e-12)));
+  std::string shown_stop = format_percent(stop.remaining);
   for (std::size_t at = shown_stop.find('%'); at != std::string::npos; at = shown_stop.find('%', at + 2))
     shown_stop.insert(at, 1, '%');
   if (ImGui::SliderFloat(hierarchical ? "stop at residual" : "stop at unshot", &until, -8.0f, 0.0f, shown_stop.c_str(),
                          ImGuiSliderFlags_NoRoundToFormat)) {
-    stop.unshot_fraction = std::strtod(format_tolerance(std::pow(10.0, double(until))).c_str(), nullptr);
+    stop.remaining = std::strtod(format_tolerance(std::pow(10.0, double(until))).c_str(), nullptr);
     act.set_stop = true;
   }
   if (ImGui::IsItemHovered())
@@ -356,15 +356,17 @@ void draw_stopping_point(stop_criterion& stop, bool hierarchical, panel_actions&
 }
 
 // Adaptive meshing: refine where the light changes (applies on re-mesh).
-void draw_adaptive_meshing(adaptive_params& adaptive) {
+// Its minimum edge is the one the hierarchical solver's splitting reads too.
+void draw_adaptive_meshing(solver_settings& settings) {
+  adaptive_params& adaptive = settings.adaptive;
   ImGui::Checkbox("adaptive meshing", &adaptive.enabled);
   if (!adaptive.enabled) return;
   float tolerance = float(adaptive.tolerance);
   ImGui::SliderFloat("tolerance", &tolerance, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   adaptive.tolerance = double(tolerance);
-  float min_edge = float(adaptive.min_edge);
+  float min_edge = float(settings.min_edge);
   ImGui::InputFloat("min edge (0: auto)", &min_edge, 0, 0, "%.4g");
-  adaptive.min_edge = std::max(0.0f, min_edge);
+  settings.min_edge = std::max(0.0f, min_edge);
 }
 
 // Apply, Pause or Start, Step, Restart.
@@ -394,7 +396,7 @@ void draw_solver_section(panel_state& state, const worker_view& view, panel_acti
   else
     draw_form_factors(solver.form_factors);
   draw_stopping_point(solver.stop, hierarchical, act);
-  if (!hierarchical) draw_adaptive_meshing(solver.adaptive);
+  if (!hierarchical) draw_adaptive_meshing(solver);
   draw_solver_buttons(view, act);
 }
 
@@ -405,7 +407,7 @@ void draw_convergence_plots(const worker_view& view, const error_status& errors)
   const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
                               errors.history.empty() ? 0.0 : errors.history.back().seconds);
   const std::vector<float> plot =
-      resample_log(view.history, end, 120, [](const convergence_point& p) { return p.unshot_fraction; });
+      resample_log(view.history, end, 120, [](const convergence_point& p) { return p.remaining; });
   if (!plot.empty())
     log_plot("##unshot",
              hierarchical ? "residual (share of the power, log scale) against time"
@@ -434,10 +436,10 @@ void draw_error_reference(const error_status& errors, panel_actions& act) {
   if (!errors.last) return;
   if (std::isnan(errors.last->error))
     ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot", errors.last->seconds,
-                       100.0 * errors.last->unshot_fraction);
+                       100.0 * errors.last->remaining);
   else
     ImGui::TextWrapped("last run with these settings: %.2f s to %.3g%% unshot, error %.2f%%", errors.last->seconds,
-                       100.0 * errors.last->unshot_fraction, 100.0 * errors.last->error);
+                       100.0 * errors.last->remaining, 100.0 * errors.last->error);
 }
 
 void draw_statistics_section(const worker_view& view, double frame_ms, const error_status& errors, panel_actions& act) {

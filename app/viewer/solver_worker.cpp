@@ -1,5 +1,6 @@
 #include "viewer/solver_worker.h"
 
+#include "radiosity/solve.h"
 #include "scene/scene_io.h"
 
 namespace bounce {
@@ -133,26 +134,26 @@ void solver_worker::handle(command& c) {
       if (!same_mesh) {
         // The old run (its links may take hundreds of MiB) goes before the
         // new mesh is built.
-        if (c.what == kind::reload) state_.reset();
-        auto fresh = std::make_shared<patch_mesh>();
+        if (c.what == kind::reload) solver_.reset();
+        solve_setup fresh;
         std::string error;
-        if (!make_patch_mesh(*s, meshing, *fresh, error)) {
+        if (!mesh_for_solve(*s, c.settings, fresh, error)) {
           error_ = s->source + ": " + error;
-          if (!state_ && mesh_) {  // the previous run starts again
-            state_ = make_radiosity_state(*scene_, *mesh_, radiosity_params_for(settings_));
+          if (!solver_ && mesh_) {  // the previous run starts again
+            solver_ = make_solver_for(*scene_, *mesh_, settings_);
             ++run_;
             history_.clear();
             exhausted_ = false;
           }
           return;
         }
-        mesh = std::move(fresh);
+        mesh = fresh.mesh;
       }
-      state_.reset();
+      solver_.reset();
       scene_ = s;
       mesh_ = mesh;
       settings_ = c.settings;
-      state_ = make_radiosity_state(*scene_, *mesh_, radiosity_params_for(c.settings));
+      solver_ = make_solver_for(*scene_, *mesh_, c.settings);
       criterion_ = c.settings.stop;
       if (!same_mesh) ++mesh_version_;
       ++run_;
@@ -174,8 +175,8 @@ void solver_worker::handle(command& c) {
       single_step_ = true;
       break;
     case kind::restart:
-      if (state_) {
-        restart_radiosity(*state_);
+      if (solver_) {
+        restart_solver(*solver_);
         ++run_;
         history_.clear();
         single_step_ = false;
@@ -193,7 +194,7 @@ void solver_worker::publish() {
   v->mesh_version = mesh_version_;
   v->run = run_;
   v->source = scene_;
-  v->mesh = state_ && state_->refined_mesh ? state_->refined_mesh : mesh_;  // adaptive meshing refines it
+  v->mesh = solver_ && refined_mesh(*solver_) ? refined_mesh(*solver_) : mesh_;  // the solver may refine it
   v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
   v->settings = settings_;
   v->settings.stop = criterion_;
@@ -203,15 +204,15 @@ void solver_worker::publish() {
     arrays_mesh_ = v->mesh;
   }
   v->mesh_arrays = mesh_arrays_;
-  if (state_) {
-    v->solution = make_snapshot(*state_);
+  if (solver_) {
+    v->solution = make_snapshot(*solver_);
     v->colours = std::make_shared<const std::vector<glm::vec3>>(gl::solution_colours(*v->solution));
   }
   v->history = history_;
   unpublished_ = false;
   v->error = error_;
-  if (state_) {
-    v->converged = exhausted_ || stop_reached(*state_, criterion_);
+  if (solver_) {
+    v->converged = exhausted_ || stop_reached(*solver_, criterion_);
     v->running = !paused_ && !v->converged;
   }
   std::atomic_store(&view_, std::shared_ptr<const worker_view>(std::move(v)));
@@ -222,7 +223,7 @@ void solver_worker::run() {
   for (;;) {
     std::unique_ptr<command> next;
     // Worker-thread state only: no lock needed to decide.
-    const bool work = state_ && (!paused_ || single_step_) && !(exhausted_ || stop_reached(*state_, criterion_));
+    const bool work = solver_ && (!paused_ || single_step_) && !(exhausted_ || stop_reached(*solver_, criterion_));
     if (!work) {
       single_step_ = false;         // a step asked for when nothing was left
       if (unpublished_) publish();  // the last step's state, before going idle (outside the lock)
@@ -245,16 +246,16 @@ void solver_worker::run() {
       publish();
       continue;
     }
-    // One shot, then publish if the last view was taken: the view shows
+    // One step, then publish if the last view was taken: the view shows
     // the newest iteration at every frame, and no snapshot is built that no
-    // frame takes. The shot runs on all cores but one, which stays free for
+    // frame takes. The step runs on all cores but one, which stays free for
     // drawing (Mesa's llvmpipe renders on the CPU): the UI must not stall.
     bool stepped = false;
-    arena_.execute([&] { stepped = step_radiosity(*state_); });
+    arena_.execute([&] { stepped = step_solver(*solver_); });
     exhausted_ = !stepped;  // nothing left: done
     single_step_ = false;
     if (!stepped) continue;
-    history_.push_back({state_->stats.seconds, state_->stats.unshot_fraction});
+    history_.push_back({solver_->stats.seconds, solver_->stats.remaining});
     unpublished_ = true;
     if (wanted_.exchange(false)) publish();
   }

@@ -1,6 +1,6 @@
 // The solver on its own thread. The UI sends commands (one queue, owned by
 // the worker) and takes the newest published view of the work; it never
-// touches solver internals, and no lock is held while shooting or drawing.
+// touches solver internals, and no lock is held while stepping or drawing.
 #pragma once
 
 #include <algorithm>
@@ -17,7 +17,7 @@
 #include <tbb/task_arena.h>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solver.h"
 #include "radiosity/solver_settings.h"
 #include "render/mesh_arrays.h"
 #include "scene/scene.h"
@@ -25,8 +25,8 @@
 namespace bounce {
 
 struct convergence_point {
-  double seconds;  // solver time
-  double unshot_fraction;
+  double seconds;    // solver time
+  double remaining;  // solver_stats::remaining
 };
 
 // The convergence history, appended to by the worker after every step and
@@ -66,8 +66,8 @@ struct worker_view {
   // here on the worker: the UI thread only copies them into GL.
   std::shared_ptr<const gl::mesh_arrays> mesh_arrays;     // of `mesh`
   std::shared_ptr<const std::vector<glm::vec3>> colours;  // of `solution`
-  convergence_log history;                                // unshot fraction against time since the (re)start
-  bool running = false;                                   // shooting now
+  convergence_log history;                                // remaining fraction against time since the (re)start
+  bool running = false;                                   // stepping now
   bool converged = false;                                 // the stopping criterion holds (or nothing is left)
   std::string error;  // last failure (bad scene, mesh too large); the previous scene stays
 };
@@ -89,7 +89,7 @@ class solver_worker {
   void reload(const solver_settings& settings);
   void pause();
   void resume();
-  void step();     // one shot, then paused
+  void step();     // one step, then paused
   void restart();  // back to B = E; running or paused as before
   void set_criterion(const stop_criterion& criterion);
 
@@ -127,7 +127,7 @@ class solver_worker {
   // Worker-thread state.
   std::shared_ptr<const scene> scene_;
   std::shared_ptr<const patch_mesh> mesh_;
-  std::unique_ptr<radiosity_state> state_;
+  std::unique_ptr<radiosity_solver> solver_;
   solver_settings settings_;
   stop_criterion criterion_;
   bool paused_ = false;

@@ -11,7 +11,7 @@
 #include "base/background_worker.h"
 #include "image/image.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solution.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {

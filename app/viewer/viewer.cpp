@@ -367,7 +367,7 @@ void viewer_app::refine_at_rest(const worker_view& view) {
   }
   const double rested = std::chrono::duration<double>(now - last_motion_).count();
   if (!refiner_.active() && refine_wanted && rested >= rest_seconds && view.source && view.mesh && view.solution &&
-      view.solution->stats.shots > 0 && width_ > 0 && height_ > 0) {
+      view.solution->stats.steps > 0 && width_ > 0 && height_ > 0) {
     camera cam = camera_from_orbit(orbit_, scene_camera_);
     cam.width = width_;
     cam.height = height_;
@@ -472,7 +472,7 @@ int viewer_app::run() {
     const panel_actions act = draw(*view, frame, keys);
     glfwSwapBuffers(window_);
     if (uploaded_mesh_ && timing_.first_mesh_ms < 0.0) timing_.first_mesh_ms = milliseconds_since(started_);
-    if (uploaded_solution_ && uploaded_solution_->stats.shots > 0 && timing_.first_lit_ms < 0.0)
+    if (uploaded_solution_ && uploaded_solution_->stats.steps > 0 && timing_.first_lit_ms < 0.0)
       timing_.first_lit_ms = milliseconds_since(started_);
     carry_out(either(act, keys), *view);
   }

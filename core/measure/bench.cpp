@@ -5,8 +5,9 @@
 #include <memory>
 
 #include "measure/run_clock.h"
-#include "radiosity/radiosity.h"
-#include "radiosity/reference_solver.h"
+#include "radiosity/progressive/reference_solver.h"
+#include "radiosity/solve.h"
+#include "radiosity/solver.h"
 
 namespace bounce {
 namespace {
@@ -36,24 +37,16 @@ struct vertex_judge {
   }
 };
 
-bool all_emission_shot(const radiosity_state& state) {
-  if (!state.lights_shot) return false;
-  // The hierarchical solver's first step carries the direct light everywhere.
-  if (state.params.method == solver_method::hierarchical) return true;
-  return std::all_of(state.unshot_emission.begin(), state.unshot_emission.end(),
-                     [](const rgb& u) { return u.r == 0.0 && u.g == 0.0 && u.b == 0.0; });
-}
-
 bench_result run_radiosity_solver(const scene& s, const bench_setting& setting, const bench_truth& truth) {
   bench_result result;
   run_clock clock;
-  patch_mesh mesh;
-  if (!make_patch_mesh(s, mesher_params_for(setting.solver, s), mesh, result.error)) return result;
-  auto state = make_radiosity_state(s, mesh, radiosity_params_for(setting.solver));
+  solve_setup setup;
+  if (!start_solve(s, setting.solver, setup, result.error)) return result;
+  radiosity_solver& solver = *setup.solver;
   result.setup_seconds = clock.wall();
-  result.elements = mesh.element_count();
-  result.vertices = mesh.vertex_count();
-  result.patches = mesh.patch_count();
+  result.elements = setup.mesh->element_count();
+  result.vertices = setup.mesh->vertex_count();
+  result.patches = setup.mesh->patch_count();
 
   std::unique_ptr<picture_judge> pictures;
   std::unique_ptr<vertex_judge> vertices;
@@ -76,21 +69,24 @@ bench_result run_radiosity_solver(const scene& s, const bench_setting& setting, 
     bench_point p;
     p.seconds = clock.wall();
     p.cpu_seconds = clock.cpu();
-    p.shots = state->stats.shots;
-    p.rays = state->stats.rays;
-    p.unshot_fraction = state->stats.unshot_fraction;
-    // The hierarchical solver keeps no shooting balance: its residual is the unshot fraction.
-    p.balance_error = hierarchical ? not_measured : balance_error(state->balance);
-    p.elements = state->mesh->element_count();
+    p.steps = solver.stats.steps;
+    p.rays = solver.stats.rays;
+    p.remaining = solver.stats.remaining;
+    // The hierarchical solver keeps no shooting balance: its residual is its remaining fraction.
+    const progressive_state* progressive = progressive_of(solver);
+    p.balance_error = progressive ? balance_error(progressive->balance) : not_measured;
+    const patch_mesh& mesh = solved_mesh(solver);  // refined, with adaptive meshing
+    p.elements = mesh.element_count();
     clock.exclude([&] {
-      const patch_mesh& mesh = *state->mesh;  // refined, with adaptive meshing
-      if (vertices) vertices->judge(mesh, state->radiosity, p);
+      const std::shared_ptr<const radiosity_snapshot> solution = make_snapshot(solver);
+      if (vertices) vertices->judge(mesh, solution->radiosity, p);
       if (!pictures) return;
       bench_point two_pass = p;
-      const auto view = pictures->judge_solution(mesh, state->radiosity, {}, diffuse_source::radiosity);
+      const auto view = pictures->judge_solution(mesh, solution->radiosity, {}, diffuse_source::radiosity);
       p.error = view.error;
       p.max_error = view.max_error;
-      const auto still = pictures->judge_solution(mesh, state->radiosity, state->direct, diffuse_source::traced_direct);
+      const auto still =
+          pictures->judge_solution(mesh, solution->radiosity, solution->direct, diffuse_source::traced_direct);
       two_pass.seconds += still.seconds;
       two_pass.cpu_seconds += still.cpu_seconds;
       two_pass.error = still.error;
@@ -104,26 +100,24 @@ bench_result run_radiosity_solver(const scene& s, const bench_setting& setting, 
   // few dozen points evenly on the log-log plot.
   constexpr double stop_spacing = 1.25;
   double next_stop = 0.0;
-  bool more = true;
-  while (more) {
-    more = step_radiosity(*state);
+  bool stopped = false;
+  run_solver(solver, setting.solver.stop, [&](const radiosity_solver&) {
     const double t = clock.wall();
-    if (std::isnan(result.first_picture_seconds) && all_emission_shot(*state)) result.first_picture_seconds = t;
-    const bool done = !more || stop_reached(*state, setting.solver.stop);
-    if (done || t >= next_stop) {
-      record();
-      next_stop = std::max(t * stop_spacing, t + 1e-3);
-    }
-    if (done) break;
-  }
-  if (state->stats.shots > 0) result.seconds_per_shot = state->stats.seconds / double(state->stats.shots);
+    if (std::isnan(result.first_picture_seconds) && all_emission_out(solver)) result.first_picture_seconds = t;
+    stopped = stop_reached(solver, setting.solver.stop);
+    if (!stopped && t < next_stop) return;
+    record();
+    next_stop = std::max(t * stop_spacing, t + 1e-3);
+  });
+  if (!stopped) record();  // the solver ran out of work: the last point
+  if (solver.stats.steps > 0) result.seconds_per_step = solver.stats.seconds / double(solver.stats.steps);
   if (hierarchical) {
-    result.links = state->stats.links;
-    result.link_tolerance = state->stats.link_tolerance;
-    result.links_final = state->stats.links_final;
+    result.links = solver.stats.links;
+    result.link_tolerance = solver.stats.link_tolerance;
+    result.links_final = solver.stats.remaining_final;
   }
-  result.elements = state->mesh->element_count();  // adaptive: the refined mesh's
-  result.vertices = state->mesh->vertex_count();
+  result.elements = solved_mesh(solver).element_count();  // adaptive: the refined mesh's
+  result.vertices = solved_mesh(solver).vertex_count();
   return result;
 }
 

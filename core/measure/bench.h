@@ -29,7 +29,7 @@ struct bench_setting {
   // and the stop (radiosity; the path tracer stops at stop.seconds too).
   solver_settings solver = [] {
     solver_settings d;
-    d.stop.unshot_fraction = 1e-3;
+    d.stop.remaining = 1e-3;
     d.stop.seconds = 10.0;
     return d;
   }();
@@ -41,7 +41,7 @@ struct bench_result {
   std::size_t elements = 0, vertices = 0, patches = 0;
   double setup_seconds = 0.0;                   // meshing, BVH and form-factor set-up
   double first_picture_seconds = not_measured;  // until every emitter has shot: direct light everywhere
-  double seconds_per_shot = not_measured;       // progressive: per shot; hierarchical: per operator application
+  double seconds_per_step = not_measured;       // solver time per step (progressive: per shot)
   std::uint64_t links = 0;                      // hierarchical: links at the end of the run
   double link_tolerance = not_measured;         // hierarchical: the oracle's tolerance at the end
   bool links_final = true;                      // hierarchical: the tolerance reached its final value

@@ -16,9 +16,9 @@ inline constexpr double not_measured = std::numeric_limits<double>::quiet_NaN();
 struct bench_point {
   double seconds = 0.0;      // wall time from the loaded scene to this solution (measuring excluded)
   double cpu_seconds = 0.0;  // CPU time of all threads over the same span
-  std::uint64_t shots = 0;
+  std::uint64_t steps = 0;
   std::uint64_t rays = 0;
-  double unshot_fraction = not_measured;
+  double remaining = not_measured;
   double error = not_measured;          // relative RMSE: per vertex (closed form) or over the picture
   double max_error = not_measured;      // largest relative error, same samples
   double power_error = not_measured;    // reflected power against the closed form, relative

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "measure/closed_forms.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solver.h"
 
 namespace bounce {
 namespace {

@@ -13,7 +13,8 @@
 #include <tuple>
 #include <vector>
 
-#include "mesh/adaptive.h"
+#include "base/check.h"
+#include "mesh/a_priori_refinement.h"
 #include "mesh/coplanar_cut.h"
 #include "mesh/patch_mesh.h"
 #include "scene/scene_info.h"
@@ -546,6 +547,18 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   }
   mesh = std::move(out);
   return true;
+}
+
+void check_mesh_contract(const patch_mesh& mesh) {
+  const std::size_t vertices = mesh.vertex_count(), elements = mesh.element_count();
+  BOUNCE_CHECK_EQ(mesh.vertex_emission.size(), vertices);
+  BOUNCE_CHECK_EQ(mesh.element_patches.size(), elements);
+  for (std::size_t e = 0; e < elements; ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    BOUNCE_CHECK(t[0] >= 0 && t[1] >= 0 && t[2] >= 0);
+    BOUNCE_CHECK_LT(std::size_t(std::max({t[0], t[1], t[2]})), vertices);
+    BOUNCE_CHECK_LT(std::size_t(mesh.element_patches[e]), mesh.patch_count());
+  }
 }
 
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point) {

@@ -7,6 +7,7 @@
 // split where the normal breaks (creases) or the material changes.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
@@ -126,12 +127,24 @@ inline vec3 element_centroid(const patch_mesh& mesh, std::size_t element) {
          3.0;
 }
 
+// The length of an element's longest edge.
+inline double element_longest_edge(const patch_mesh& mesh, std::size_t element) {
+  const std::array<vec3, 3> p = element_corners(mesh, element);
+  return std::max({glm::length(p[1] - p[0]), glm::length(p[2] - p[1]), glm::length(p[0] - p[2])});
+}
+
 // The mean over an element's corners of a per-vertex value (its integral
 // over the element, per unit area, when the value is linear across it).
 inline rgb element_mean(const patch_mesh& mesh, const std::vector<rgb>& per_vertex, std::size_t element) {
   const glm::ivec3 t = mesh.elements[element];
   return (per_vertex[std::size_t(t[0])] + per_vertex[std::size_t(t[1])] + per_vertex[std::size_t(t[2])]) / 3.0;
 }
+
+// Stops the program (BOUNCE_CHECK) unless the mesh keeps the mesher's
+// contract: every element names three vertices of the mesh and one of its
+// patches (and the emission and patch arrays are sized to the mesh).
+// The solvers check it once when they are made.
+void check_mesh_contract(const patch_mesh& mesh);
 
 // Barycentric coordinates of `point` (projected onto the element's plane).
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point);

@@ -2,20 +2,10 @@
 
 #include <algorithm>
 
-#include "radiosity/radiosity.h"
+#include "radiosity/solver.h"
 #include "scene/scene_info.h"
 
 namespace bounce {
-
-bool stop_reached(const radiosity_state& state, const stop_criterion& stop) {
-  const radiosity_stats& st = state.stats;
-  // Before every emitter has shot, the unshot fraction says little: a dim
-  // emitter may not have shot yet.
-  if (stop.unshot_fraction > 0.0 && state.lights_shot && st.links_final && st.unshot_fraction <= stop.unshot_fraction)
-    return true;
-  if (stop.max_shots > 0 && st.shots >= stop.max_shots) return true;
-  return stop.seconds > 0.0 && st.seconds >= stop.seconds;
-}
 
 mesher_params mesher_params_for(const solver_settings& settings, const scene& s) {
   mesher_params p;
@@ -24,7 +14,7 @@ mesher_params mesher_params_for(const solver_settings& settings, const scene& s)
     // shooters refine with the receivers (docs/radiosity.md).
     p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : adaptive_start_edge(s);
     p.patch_edge = settings.patch_edge < 0.0 ? 0.0 : settings.patch_edge;
-    p.a_priori_min_edge = settings.adaptive.min_edge > 0.0 ? settings.adaptive.min_edge : default_min_edge(p.max_edge);
+    p.a_priori_min_edge = settings.min_edge > 0.0 ? settings.min_edge : default_min_edge(p.max_edge);
     return p;
   }
   if (settings.method == solver_method::hierarchical) {
@@ -32,7 +22,7 @@ mesher_params mesher_params_for(const solver_settings& settings, const scene& s)
     // links need them: they start at the uniform default.
     p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : hierarchical_max_edge(s);
     p.patch_edge = 0.0;
-    p.solver_min_edge = settings.adaptive.min_edge;
+    p.solver_min_edge = settings.min_edge;
     return p;
   }
   p.max_edge = settings.max_edge > 0.0 ? settings.max_edge : default_max_edge(s);
@@ -48,12 +38,13 @@ radiosity_params radiosity_params_for(const solver_settings& settings) {
   p.method = settings.method;
   p.form_factors = settings.form_factors;
   p.adaptive = settings.adaptive;
+  p.adaptive.min_edge = settings.min_edge;
   p.hierarchical.tolerance = settings.link_tolerance;
   p.hierarchical.split_elements = true;
-  p.hierarchical.min_edge = settings.adaptive.min_edge;
+  p.hierarchical.min_edge = settings.min_edge;
   // Each tolerance is solved to the run's stopping point, or 2%, before
   // the links are refined further.
-  p.hierarchical.refine_below = std::max(settings.stop.unshot_fraction, 0.02);
+  p.hierarchical.refine_below = std::max(settings.stop.remaining, 0.02);
   return p;
 }
 

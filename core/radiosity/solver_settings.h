@@ -9,31 +9,28 @@
 #include <span>
 #include <string_view>
 
-#include "mesh/adaptive.h"
 #include "mesh/patch_mesh.h"
+#include "radiosity/progressive/adaptive_refinement.h"
 #include "radiosity/transfer/form_factor.h"
 
 namespace bounce {
 
-struct radiosity_state;
 struct radiosity_params;
 
 // Which solver runs: hierarchical radiosity with clustering (the default:
-// hierarchical.h) or progressive shooting (radiosity.h), the baseline.
+// hierarchical/solver.h) or progressive shooting (progressive/progressive.h),
+// the baseline.
 enum class solver_method { hierarchical, progressive };
 
 // When a run stops. Every limit counts from the solver's (re)start: the
-// shots it has made and the time it has spent shooting (radiosity_stats),
-// so a limit means the same whether the run is driven by `run_radiosity`,
-// the window's worker or the bench.
+// steps it has made and the time it has spent stepping (solver_stats), so
+// a limit means the same whether the run is driven by run_solve, the
+// window's worker or the bench (stop_reached, solver.h).
 struct stop_criterion {
-  double unshot_fraction = 0.0;  // stop at or below this, once every emitter has shot (0: no limit)
-  std::uint64_t max_shots = 0;   // 0: no limit
-  double seconds = 0.0;          // solver time; 0: no limit
+  double remaining = 0.0;       // at or below this remaining fraction, once it is final (0: no limit)
+  std::uint64_t max_steps = 0;  // 0: no limit
+  double seconds = 0.0;         // solver time; 0: no limit
 };
-
-// True when `state` meets `stop`.
-bool stop_reached(const radiosity_state& state, const stop_criterion& stop);
 
 struct solver_settings {
   solver_method method = solver_method::hierarchical;
@@ -41,12 +38,16 @@ struct solver_settings {
   // defaults that depend on the scene.
   double max_edge = 0.0;     // longest element edge; 0: the scene's default
   double patch_edge = -1.0;  // shooting patches (substructuring); 0: elements shoot; < 0: the default
+  // Elements are not split below this edge: the hierarchical solver's
+  // element refinement and the progressive solver's adaptive meshing both
+  // read it. 0: an eighth of the element size.
+  double min_edge = 0.0;
   form_factor_params form_factors;
-  adaptive_params adaptive;  // adaptive.min_edge 0: the default for the element size
+  adaptive_params adaptive;  // progressive: adaptive meshing (its min_edge comes from min_edge above)
   // Hierarchical: the oracle's final tolerance, a fraction of the emitted
   // power that one link may carry unrefined (the accuracy knob).
   double link_tolerance = 1e-5;
-  stop_criterion stop{0.01, 0, 0.0};  // 1% of the power left unshot; no shot or time limit
+  stop_criterion stop{0.01, 0, 0.0};  // 1% of the power left; no step or time limit
 };
 
 // The mesher's parameters for `s`: element size from the scene when not
@@ -54,7 +55,7 @@ struct solver_settings {
 // elements themselves, which refine with the receivers).
 mesher_params mesher_params_for(const solver_settings& settings, const scene& s);
 
-// The solver's parameters (form factors and a posteriori refinement).
+// The solver's parameters (form factors, a posteriori refinement, links).
 radiosity_params radiosity_params_for(const solver_settings& settings);
 
 // Names of the solvers, as the command line and the panel show them.

@@ -61,7 +61,7 @@ TEST(Cli, HelpListsEveryCommand) {
 TEST(Cli, SolvingCommandsShareOptions) {
   for (const char* command : {"view", "render", "trace", "solve"}) {
     run_result r = run(std::string(command) + " --help");
-    for (const char* option : {"--method", "--max-edge", "--until", "--max-shots", "--time"})
+    for (const char* option : {"--method", "--max-edge", "--until", "--max-steps", "--time"})
       EXPECT_NE(r.out.find(option), std::string::npos) << command << " " << option;
     // The camera options where a picture is made; solve makes none.
     for (const char* option : {"--eye", "--target", "--up", "--fov", "--size"})
@@ -85,9 +85,9 @@ TEST(Cli, StatsIsWrittenByEveryCommandThatOffersIt) {
       nlohmann::json j = nlohmann::json::parse(slurp(stats), nullptr, false);
       ASSERT_FALSE(j.is_discarded()) << command << ": " << slurp(stats);
       const nlohmann::json& radiosity = std::string(command) == "trace" ? j["radiosity"] : j;
-      EXPECT_GT(radiosity["shots"].get<int>(), 0) << command;
+      EXPECT_GT(radiosity["steps"].get<int>(), 0) << command;
       EXPECT_GT(radiosity["elements"].get<int>(), 0) << command;
-      EXPECT_LE(radiosity["unshot_fraction"].get<double>(), 0.05) << command;
+      EXPECT_LE(radiosity["remaining"].get<double>(), 0.05) << command;
       EXPECT_EQ(radiosity["solver"].get<std::string>(), solver) << command;
       if (std::string(solver) == "progressive") {
         EXPECT_LT(radiosity["power_balance_error"].get<double>(), 1e-9) << command;
@@ -144,7 +144,7 @@ TEST(Cli, GeneratedScenesByName) {
   EXPECT_NEAR(j["triangles"].get<double>(), 10'000.0, 100.0);
   EXPECT_GT(j["emitting_surfaces"].get<int>(), 0);
   scratch_dir dir;
-  r = run("render generated:box-room-2 --size 16x16 --max-shots 3 --out " + dir.path("box.png"));
+  r = run("render generated:box-room-2 --size 16x16 --max-steps 3 --out " + dir.path("box.png"));
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir.path("box.png")));
   // An unknown name is an input error naming it, like a missing file.
@@ -276,7 +276,7 @@ TEST(Cli, RangeErrorsAreShort) {
       {"render --exposure 0", "--exposure: 0 is out of range: must be in [1e-09, 1e+09]"},
       {"render --exposure 1e10", "--exposure: 1e+10 is out of range: must be in [1e-09, 1e+09]"},
       {"trace --no-radiosity --ambient 1e10", "--ambient: 1e+10 is out of range: must be in [0, 1e+09]"},
-      {"solve --max-shots -1", "--max-shots: '-1' is not a whole number"},
+      {"solve --max-steps -1", "--max-steps: '-1' is not a whole number"},
       {"trace --seed -1", "--seed: '-1' is not a whole number"},
   };
   for (const auto& [args, message] : cases) {
@@ -308,7 +308,7 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"trace --integrator path --max-edge 100 --until 0.1", "--max-edge, --until: the path tracer makes no radiosity"},
       {"trace --ambient 0.5", "--ambient applies with --no-radiosity only"},
       {"trace --no-radiosity --direct rays", "--direct applies to two-pass stills only"},
-      {"trace --no-radiosity --ambient 0.5 --max-shots 9", "--max-shots: with --no-radiosity and --ambient"},
+      {"trace --no-radiosity --ambient 0.5 --max-steps 9", "--max-steps: with --no-radiosity and --ambient"},
       {"trace --spp 4 --adaptive-spp 4", "--adaptive-spp 4 must be more than --spp 4"},
       {"trace --passes 4", "--passes applies to --integrator ppm only"},
       {"trace --integrator twopass --passes 4", "--passes applies to --integrator ppm only"},
@@ -403,9 +403,9 @@ TEST(Cli, EmitterFacingAwayIsWarnedAbout) {
   const std::string path = dir.write("away.json", R"({"materials": {"w": {"rho": [0.5,0.5,0.5]}, "e": {"ke": [9,9,9]}},
       "surfaces": [{"name": "floor", "polygon": [[0,0,0],[0,0,1],[1,0,1],[1,0,0]], "material": "w"},
                    {"name": "lamp", "polygon": [[0.4,1,0.4],[0.4,1,0.6],[0.6,1,0.6],[0.6,1,0.4]], "material": "e"}]})");
-  const std::string commands[] = {"info", "solve --max-shots 5",
-                                  "render --max-shots 5 --size 8x8 --out " + dir.path("r.png"),
-                                  "trace --max-shots 5 --size 8x8 --out " + dir.path("t.png")};
+  const std::string commands[] = {"info", "solve --max-steps 5",
+                                  "render --max-steps 5 --size 8x8 --out " + dir.path("r.png"),
+                                  "trace --max-steps 5 --size 8x8 --out " + dir.path("t.png")};
   for (const std::string& command : commands) {
     run_result r = run(command + " " + path);
     EXPECT_EQ(r.code, 0) << command << ": " << r.err;
@@ -590,9 +590,9 @@ TEST(Cli, SolveWritesStatsAndPly) {
   EXPECT_NE(r.out.find("mesh: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("done: "), std::string::npos) << r.out;
   nlohmann::json j = nlohmann::json::parse(slurp(stats));
-  for (const char* key : {"elements", "vertices", "shots", "unshot_fraction", "seconds", "rays"})
+  for (const char* key : {"elements", "vertices", "steps", "remaining", "seconds", "rays"})
     EXPECT_TRUE(j.contains(key)) << key;
-  EXPECT_LE(j["unshot_fraction"].get<double>(), 0.05);
+  EXPECT_LE(j["remaining"].get<double>(), 0.05);
   EXPECT_GT(j["rays"].get<double>(), 0.0);
   // The PLY header names the radiosity and colour properties, and the
   // counts match the statistics.
@@ -640,9 +640,9 @@ TEST(Cli, AdaptiveMeshingRefinesInSolveRenderAndTrace) {
 TEST(Cli, SolveStopsAtTheShotLimitAndComparesWithTheReference) {
   scratch_dir dir;
   const std::string stats = dir.path("stats.json");
-  run_result r = run("solve --max-edge 200 --max-shots 7 --stats " + stats);
+  run_result r = run("solve --max-edge 200 --max-steps 7 --stats " + stats);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["shots"], 7);
+  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["steps"], 7);
   r = run("solve " + source_path("assets/furnace/furnace.json") + " --max-edge 1 --until 1e-7 --reference --stats " +
           stats);
   ASSERT_EQ(r.code, 0) << r.err;
@@ -823,7 +823,7 @@ TEST(Cli, TraceDefaultsToACleanSampleCount) {
 // Frames at 1, 2, 4, 8, ... shots and the last, not one per shot.
 TEST(Cli, FramesComeAtDoublingShotCounts) {
   scratch_dir dir;
-  ASSERT_EQ(run("render --quiet --size 16x16 --solver progressive --max-edge 150 --max-shots 20 --until 0 --frames " +
+  ASSERT_EQ(run("render --quiet --size 16x16 --solver progressive --max-edge 150 --max-steps 20 --until 0 --frames " +
                 dir.path("f"))
                 .code,
             0);

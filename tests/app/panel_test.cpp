@@ -28,7 +28,7 @@ solver_settings hierarchical(double link_tolerance) {
   o.method = solver_method::hierarchical;
   o.max_edge = 80;
   o.link_tolerance = link_tolerance;
-  o.stop.unshot_fraction = 0.01;
+  o.stop.remaining = 0.01;
   return o;
 }
 
@@ -74,7 +74,7 @@ TEST(Panel, ChoosingTheOtherSolverRestartsWithIt) {
   EXPECT_EQ(second->run, first->run + 1);
   EXPECT_EQ(second->source, first->source);  // the scene is kept, not copied
   EXPECT_EQ(second->solution->stats.links, 0u);
-  EXPECT_GT(second->solution->stats.shots, 0u);
+  EXPECT_GT(second->solution->stats.steps, 0u);
   EXPECT_TRUE(second->converged);
   EXPECT_TRUE(second->error.empty()) << second->error;
   // The progressive solver shoots from patches: another mesh.
@@ -109,7 +109,7 @@ TEST(Panel, ANewLinkToleranceRestartsOnTheSameMesh) {
   EXPECT_GE(fine->mesh->element_count(), coarse->mesh->element_count());
   EXPECT_EQ(fine->settings.link_tolerance, 1e-5);
   EXPECT_DOUBLE_EQ(fine->solution->stats.link_tolerance, 1e-5);
-  EXPECT_TRUE(fine->solution->stats.links_final);
+  EXPECT_TRUE(fine->solution->stats.remaining_final);
   EXPECT_GT(fine->solution->stats.links, coarse->solution->stats.links);
 }
 

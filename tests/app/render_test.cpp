@@ -82,10 +82,10 @@ void expect_cornell_matches(const std::string& stop, const std::string& golden) 
 }
 
 TEST(HeadlessImages, CornellBoxAfterOneShot) {
-  expect_cornell_matches("--max-shots 1", "cornell_1_shot.png");
+  expect_cornell_matches("--max-steps 1", "cornell_1_shot.png");
 }
 TEST(HeadlessImages, CornellBoxAfterTenShots) {
-  expect_cornell_matches("--max-shots 10", "cornell_10_shots.png");
+  expect_cornell_matches("--max-steps 10", "cornell_10_shots.png");
 }
 TEST(HeadlessImages, CornellBoxConverged) {
   expect_cornell_matches("--until 0.001", "cornell_converged.png");
@@ -101,7 +101,7 @@ TEST(HeadlessImages, EmitterPixelsShowTheirRadiance) {
   // After the first shot the light has received nothing: its pixels are
   // exactly its Ke = (17, 12, 4) in the linear PFM.
   scratch_dir dir;
-  ASSERT_EQ(run("render --size 256x256 --max-edge 60 --max-shots 1 --out " + dir.path("a.png") + " --pfm " +
+  ASSERT_EQ(run("render --size 256x256 --max-edge 60 --max-steps 1 --out " + dir.path("a.png") + " --pfm " +
                 dir.path("a.pfm")),
             0);
   image img;
@@ -162,7 +162,7 @@ TEST(HeadlessImages, LightInOrUnderTheCeilingPlaneShowsItsRadiance) {
   for (const char* height : {"548.8", "548.7"}) {
     scratch_dir dir(height);
     const std::string json = test_support::write_official_cornell(dir, height);
-    ASSERT_EQ(run("render " + json + " --max-edge 60 --max-shots 1 --out " + dir.path("a.png") + " --pfm " +
+    ASSERT_EQ(run("render " + json + " --max-edge 60 --max-steps 1 --out " + dir.path("a.png") + " --pfm " +
                   dir.path("a.pfm")),
               0);
     image img;
@@ -187,7 +187,7 @@ TEST(HeadlessImages, NoNegativeOrWildPixelsAtAnySize) {
   scratch_dir dir;
   double brightest = 0.0;
   for (const char* size : {"64x64", "128x128", "1x1", "64x1"}) {
-    ASSERT_EQ(run(std::string("render --max-shots 10 --size ") + size + " --out " + dir.path("a.png") + " --pfm " +
+    ASSERT_EQ(run(std::string("render --max-steps 10 --size ") + size + " --out " + dir.path("a.png") + " --pfm " +
                   dir.path("a.pfm")),
               0)
         << size;
@@ -250,7 +250,7 @@ TEST(HeadlessImages, EyeInsideARoomWithBigTrianglesCrossingTheViewVolume) {
   // links were refined, where the residual (87% here) is far from zero.
   scratch_dir dir;
   for (const std::string view : {"", " --eye 3,0.3,3 --target 3,3,4 --fov 100"}) {
-    const std::string common = " generated:interior-10k --max-edge 2 --max-shots 3 --size 64x64" + view + " --out " +
+    const std::string common = " generated:interior-10k --max-edge 2 --max-steps 3 --size 64x64" + view + " --out " +
                                dir.path("a.png") + " --pfm ";
     ASSERT_EQ(run("trace --direct radiosity --spp 4" + common + dir.path("traced.pfm")), 0) << view;
     for (const std::string samples : {"", " --msaa 0"}) {
@@ -353,7 +353,7 @@ TEST(RayTracedStills, CoplanarLightAgreesWithThePathTracerAsTheEmbeddedBoxDoes) 
 
 TEST(HeadlessImages, FramesAreWrittenDuringTheSolve) {
   scratch_dir dir;
-  ASSERT_EQ(run("render --size 64x64 --max-edge 100 --solver progressive --max-shots 6 --frame-every 2 --frames " +
+  ASSERT_EQ(run("render --size 64x64 --max-edge 100 --solver progressive --max-steps 6 --frame-every 2 --frames " +
                 dir.path("frames") + " --out " + dir.path("a.png")),
             0);
   for (const char* name : {"frame_000002.png", "frame_000004.png", "frame_000006.png"})

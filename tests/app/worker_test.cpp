@@ -21,7 +21,7 @@ solver_settings coarse(double until) {
   solver_settings o;
   o.method = solver_method::progressive;
   o.max_edge = 120;
-  o.stop.unshot_fraction = until;
+  o.stop.remaining = until;
   return o;
 }
 
@@ -34,11 +34,11 @@ TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
   ASSERT_TRUE(view->solution);
   EXPECT_TRUE(view->converged);
   EXPECT_FALSE(view->running);
-  EXPECT_LE(view->solution->stats.unshot_fraction, 0.01);
+  EXPECT_LE(view->solution->stats.remaining, 0.01);
   // One history point per shot, unshot falling.
-  EXPECT_EQ(view->history.size(), view->solution->stats.shots);
+  EXPECT_EQ(view->history.size(), view->solution->stats.steps);
   for (std::size_t i = 1; i < view->history.size(); ++i)
-    EXPECT_LE(view->history[i].unshot_fraction, view->history[i - 1].unshot_fraction + 1e-12);
+    EXPECT_LE(view->history[i].remaining, view->history[i - 1].remaining + 1e-12);
   EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
 }
 
@@ -46,17 +46,17 @@ TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
   solver_worker worker;
   solver_settings settings;  // the default solver
   settings.max_edge = 60;
-  settings.stop.unshot_fraction = 0.01;
+  settings.stop.remaining = 0.01;
   ASSERT_EQ(settings.method, solver_method::hierarchical);
   worker.load(test_support::default_cornell_box(), settings);
   worker.wait_idle();
   auto view = worker.latest();
   ASSERT_TRUE(view->solution);
   EXPECT_TRUE(view->converged);
-  EXPECT_TRUE(view->solution->stats.links_final);
+  EXPECT_TRUE(view->solution->stats.remaining_final);
   EXPECT_GT(view->solution->stats.links, 0u);
-  EXPECT_LE(view->solution->stats.unshot_fraction, 0.01);
-  EXPECT_EQ(view->history.size(), view->solution->stats.shots);  // one point per step
+  EXPECT_LE(view->solution->stats.remaining, 0.01);
+  EXPECT_EQ(view->history.size(), view->solution->stats.steps);  // one point per step
   EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
 }
 
@@ -65,14 +65,14 @@ TEST(SolverWorker, PauseStepAndRestart) {
   worker.load(test_support::default_cornell_box(), coarse(1e-9));
   worker.pause();
   worker.wait_idle();
-  const std::uint64_t paused_at = worker.latest()->solution->stats.shots;
+  const std::uint64_t paused_at = worker.latest()->solution->stats.steps;
   EXPECT_FALSE(worker.latest()->running);
   worker.step();
   worker.wait_idle();
-  EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 1);
+  EXPECT_EQ(worker.latest()->solution->stats.steps, paused_at + 1);
   worker.step();
   worker.wait_idle();
-  EXPECT_EQ(worker.latest()->solution->stats.shots, paused_at + 2);
+  EXPECT_EQ(worker.latest()->solution->stats.steps, paused_at + 2);
   // A restart while paused goes back to B = E and stays paused: no shot
   // made, the history empty, every vertex at its emission, a new run.
   const std::uint64_t run_before = worker.latest()->run;
@@ -80,7 +80,7 @@ TEST(SolverWorker, PauseStepAndRestart) {
   worker.wait_idle();
   const auto restarted = worker.latest();
   EXPECT_EQ(restarted->run, run_before + 1);
-  EXPECT_EQ(restarted->solution->stats.shots, 0u);
+  EXPECT_EQ(restarted->solution->stats.steps, 0u);
   EXPECT_TRUE(restarted->history.empty());
   EXPECT_FALSE(restarted->running);
   for (std::size_t v = 0; v < restarted->mesh->vertex_count(); ++v) {
@@ -89,7 +89,7 @@ TEST(SolverWorker, PauseStepAndRestart) {
   // Running again from there makes the same first shots as the first run.
   worker.step();
   worker.wait_idle();
-  EXPECT_EQ(worker.latest()->solution->stats.shots, 1u);
+  EXPECT_EQ(worker.latest()->solution->stats.steps, 1u);
   EXPECT_EQ(worker.latest()->mesh_version, 1u);
 }
 
@@ -106,8 +106,8 @@ TEST(SolverWorker, ARunThatRunsOutRecordsOnlyTheShotsMade) {
   const auto view = worker.latest();
   ASSERT_TRUE(view->solution);
   EXPECT_TRUE(view->converged);
-  EXPECT_GT(view->solution->stats.shots, 0u);
-  EXPECT_EQ(view->history.size(), view->solution->stats.shots);
+  EXPECT_GT(view->solution->stats.steps, 0u);
+  EXPECT_EQ(view->history.size(), view->solution->stats.steps);
 }
 
 // With adaptive meshing the published mesh is the refined one, and the
@@ -148,7 +148,7 @@ TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
   ASSERT_EQ(view->colours->size(), 2 * mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     ASSERT_EQ((*view->colours)[v], glm::vec3(view->solution->radiosity[v])) << v;
-    ASSERT_EQ((*view->colours)[mesh.vertex_count() + v], glm::vec3(view->solution->unshot_vertex[v])) << v;
+    ASSERT_EQ((*view->colours)[mesh.vertex_count() + v], glm::vec3(view->solution->remaining[v])) << v;
   }
   // A restart publishes a new solution with the same mesh: the arrays are kept.
   worker.restart();
@@ -168,7 +168,7 @@ TEST(ConvergenceLog, AppendsAcrossBlocksAndSharesThem) {
   ASSERT_EQ(published.size(), 2500u);
   ASSERT_EQ(log.size(), 3000u);
   for (std::size_t i = 0; i < published.size(); ++i) ASSERT_EQ(published[i].seconds, double(i));
-  EXPECT_EQ(published.back().unshot_fraction, 1.0 / 2500);
+  EXPECT_EQ(published.back().remaining, 1.0 / 2500);
   EXPECT_EQ(log.back().seconds, 2999.0);
   log.clear();
   EXPECT_TRUE(log.empty());
@@ -242,7 +242,7 @@ TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
   EXPECT_LT(status.history.back().error, 0.3);  // 120 mm elements against 32x32 pixels: coarse, but close
   EXPECT_EQ(status.last->error, status.history.back().error);
   EXPECT_EQ(status.last->seconds, worker.latest()->solution->stats.seconds);
-  EXPECT_LE(status.last->unshot_fraction, 1e-3);
+  EXPECT_LE(status.last->remaining, 1e-3);
   EXPECT_FALSE(tracker.status("another setting").last.has_value());
 }
 

@@ -153,7 +153,7 @@ TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
   setting.solver.method = solver_method::progressive;  // not the default
   setting.solver.max_edge = 0.5;
   setting.solver.patch_edge = 0.0;
-  setting.solver.stop.unshot_fraction = 1e-4;
+  setting.solver.stop.remaining = 1e-4;
   bench_truth truth;
   truth.exact = exact_kind::furnace;
   const bench_result r = run_bench(s, setting, truth);
@@ -165,7 +165,7 @@ TEST(BenchRun, ProgressiveFurnaceErrorFallsAlongOneRun) {
   ASSERT_GE(points.size(), 5u);
   for (std::size_t i = 1; i < points.size(); ++i) {
     EXPECT_GT(points[i].seconds, points[i - 1].seconds);
-    EXPECT_GE(points[i].shots, points[i - 1].shots);
+    EXPECT_GE(points[i].steps, points[i - 1].steps);
     EXPECT_LE(points[i].error, points[i - 1].error * 1.0001);  // shooting only adds light it owes
   }
   EXPECT_GT(points.front().error, 0.3);
@@ -181,7 +181,7 @@ TEST(BenchRun, HierarchicalFurnaceConvergesAndReportsItsLinks) {
   bench_setting setting;
   ASSERT_EQ(setting.solver.method, solver_method::hierarchical);
   setting.solver.max_edge = 0.5;
-  setting.solver.stop.unshot_fraction = 1e-6;
+  setting.solver.stop.remaining = 1e-6;
   bench_truth truth;
   truth.exact = exact_kind::furnace;
   const bench_result r = run_bench(s, setting, truth);
@@ -192,9 +192,9 @@ TEST(BenchRun, HierarchicalFurnaceConvergesAndReportsItsLinks) {
   ASSERT_GE(points.size(), 2u);
   EXPECT_GT(points.front().error, 0.3);  // B = 100 E: the first step's direct light is far from it
   EXPECT_LT(points.back().error, 1e-4);
-  EXPECT_LE(points.back().unshot_fraction, 1e-6);
+  EXPECT_LE(points.back().remaining, 1e-6);
   EXPECT_TRUE(std::isnan(points.back().balance_error));  // no shooting balance to report
-  for (std::size_t i = 1; i < points.size(); ++i) EXPECT_GT(points[i].shots, points[i - 1].shots);
+  for (std::size_t i = 1; i < points.size(); ++i) EXPECT_GT(points[i].steps, points[i - 1].steps);
   EXPECT_GT(r.links, 0u);
   EXPECT_TRUE(r.links_final);
   EXPECT_DOUBLE_EQ(r.link_tolerance, setting.solver.link_tolerance);

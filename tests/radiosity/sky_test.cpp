@@ -8,7 +8,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solver.h"
 #include "scene/camera_math.h"
 #include "scene/scene_io.h"
 #include "scene/sky.h"
@@ -48,11 +48,14 @@ radiosity_params params_for(solver_method method) {
   return p;
 }
 
-void solve(radiosity_state& state) {
+// Solves with `method` to a remaining fraction of 1e-9 (at most 400 steps).
+std::unique_ptr<radiosity_solver> solve(const scene& s, const patch_mesh& mesh, solver_method method) {
+  auto solver = make_radiosity_solver(s, mesh, params_for(method));
   stop_criterion stop;
-  stop.unshot_fraction = 1e-9;
-  stop.max_shots = 400;
-  run_radiosity(state, stop, [](const radiosity_state&) {});
+  stop.remaining = 1e-9;
+  stop.max_steps = 400;
+  run_solver(*solver, stop);
+  return solver;
 }
 
 TEST(Sky, UniformSkyOverAnOpenPlaneGivesRhoPiL) {
@@ -60,15 +63,15 @@ TEST(Sky, UniformSkyOverAnOpenPlaneGivesRhoPiL) {
   const scene s = open_floor(uniform_sky(radiance), 0.5);
   const patch_mesh mesh = mesh_of(s, 0.5);
   for (const solver_method method : {solver_method::progressive, solver_method::hierarchical}) {
-    auto state = make_radiosity_state(s, mesh, params_for(method));
-    solve(*state);
+    const auto solver = solve(s, mesh, method);
+    const auto solution = make_snapshot(*solver);
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
       for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(state->radiosity[v][c], 0.5 * pi * radiance[c], 1e-12) << name_of(method) << " vertex " << v;
+        EXPECT_NEAR(solution->radiosity[v][c], 0.5 * pi * radiance[c], 1e-12) << name_of(method) << " vertex " << v;
     // All of it came straight from the sky; the progressive solver's power balances.
-    EXPECT_EQ(state->direct, state->radiosity) << name_of(method);
+    EXPECT_EQ(solution->direct, solution->radiosity) << name_of(method);
     if (method == solver_method::progressive) {
-      EXPECT_LT(balance_error(state->balance), 1e-9);
+      EXPECT_LT(balance_error(progressive_of(*solver)->balance), 1e-9);
     }
   }
 }
@@ -82,13 +85,13 @@ TEST(Sky, GradientSkyMatchesItsClosedForm) {
   const patch_mesh mesh = mesh_of(s, 0.5);
   const double expected = 0.6 * open_sky_irradiance(sky).g;
   for (const solver_method method : {solver_method::progressive, solver_method::hierarchical}) {
-    auto state = make_radiosity_state(s, mesh, params_for(method));
-    solve(*state);
+    const auto solver = solve(s, mesh, method);
+    const auto solution = make_snapshot(*solver);
     // 64 stratified, cosine-weighted rays per point: the mean is within 1%.
     double mean = 0.0;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-      EXPECT_NEAR(state->radiosity[v].g, expected, 0.02 * expected) << name_of(method) << " vertex " << v;
-      mean += state->radiosity[v].g / double(mesh.vertex_count());
+      EXPECT_NEAR(solution->radiosity[v].g, expected, 0.02 * expected) << name_of(method) << " vertex " << v;
+      mean += solution->radiosity[v].g / double(mesh.vertex_count());
     }
     EXPECT_NEAR(mean, expected, 0.005 * expected) << name_of(method);
   }
@@ -102,21 +105,21 @@ TEST(Sky, ARoofShadesTheFloorBelowIt) {
   add_polygon(s, {{-1, 0.2, -1}, {0, 0.2, -1}, {0, 0.2, 1}, {-1, 0.2, 1}}, roof);  // faces -y
   const patch_mesh mesh = mesh_of(s, 0.25);
   for (const solver_method method : {solver_method::progressive, solver_method::hierarchical}) {
-    auto state = make_radiosity_state(s, mesh, params_for(method));
-    solve(*state);
+    const auto solver = solve(s, mesh, method);
+    const auto solution = make_snapshot(*solver);
     double shaded = INFINITY, open = 0.0;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       const vec3 p = mesh.positions[v];
       if (mesh.normals[v].y < 0.5 || p.y > 0.1) continue;  // floor vertices only
-      if (p.x < -0.6 && std::abs(p.z) < 0.5) shaded = std::min(shaded, state->radiosity[v].r);
-      if (p.x > 0.6 && std::abs(p.z) < 0.5) open = std::max(open, state->radiosity[v].r);
+      if (p.x < -0.6 && std::abs(p.z) < 0.5) shaded = std::min(shaded, solution->radiosity[v].r);
+      if (p.x > 0.6 && std::abs(p.z) < 0.5) open = std::max(open, solution->radiosity[v].r);
     }
     EXPECT_LT(shaded, 0.5 * open) << name_of(method);
     // Away from the roof, close to the open-sky value (the roof's underside,
     // lit by the sky below the horizon, adds a little).
     EXPECT_NEAR(open, 0.5 * pi, 0.02 * 0.5 * pi) << name_of(method);
     if (method == solver_method::progressive) {
-      EXPECT_LT(balance_error(state->balance), 1e-6);
+      EXPECT_LT(balance_error(progressive_of(*solver)->balance), 1e-6);
     }
   }
 }

@@ -13,10 +13,11 @@
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
 #include "radiosity/hierarchical/cluster_tree.h"
-#include "radiosity/transfer/form_factor.h"
 #include "radiosity/hierarchical/solver.h"
+#include "radiosity/progressive/progressive.h"
+#include "radiosity/solver.h"
+#include "radiosity/transfer/form_factor.h"
 #include "radiosity/transfer/mirror_images.h"
-#include "radiosity/radiosity.h"
 #include "radiosity/transfer/specular_paths.h"
 #include "trace/photon_tracing.h"
 #include "trace/ray_scene.h"
@@ -59,22 +60,21 @@ void add_outward_box(scene& s, vec3 lo, vec3 hi, int material) {
   for (const auto& f : faces) add_polygon(s, {c[f[3]], c[f[2]], c[f[1]], c[f[0]]}, material);
 }
 
-radiosity_params progressive(int shadow_rays = 16) {
-  radiosity_params p;
-  p.method = solver_method::progressive;
+progressive_params progressive(int shadow_rays = 16) {
+  progressive_params p;
   p.form_factors.shadow_rays = shadow_rays;
   return p;
 }
 
 // Steps until every element has shot its own emission (the direct light,
 // by whatever way it goes).
-void shoot_emitters(radiosity_state& state) {
+void shoot_emitters(progressive_state& state) {
   auto pending = [&] {
     for (const rgb& u : state.unshot_emission)
       if (u != rgb(0.0)) return true;
     return !state.lights_shot;
   };
-  for (int i = 0; i < 1000 && pending(); ++i) ASSERT_TRUE(step_radiosity(state));
+  for (int i = 0; i < 1000 && pending(); ++i) ASSERT_TRUE(step_progressive(state));
   ASSERT_FALSE(pending());
 }
 
@@ -99,7 +99,7 @@ TEST(SpecularTransfer, PlanarMirrorLightsTheFloorAsTheEmittersImage) {
   const double kr = 0.9;
   const scene s = mirror_ceiling_scene(kr);
   const patch_mesh mesh = mesh_of(s, 0.25);
-  auto state = make_radiosity_state(s, mesh, progressive());
+  auto state = make_progressive_state(s, mesh, progressive());
   ASSERT_TRUE(state->form_factors.mirrors);
   ASSERT_EQ(state->form_factors.mirrors->mirrors.size(), 1u);
   shoot_emitters(*state);
@@ -120,9 +120,9 @@ TEST(SpecularTransfer, PlanarMirrorLightsTheFloorAsTheEmittersImage) {
   EXPECT_GT(checked, 100);
 
   // Off, the mirror is its diffuse part alone (black): the floor is dark.
-  radiosity_params off = progressive();
+  progressive_params off = progressive();
   off.form_factors.specular_transfer = false;
-  auto dark = make_radiosity_state(s, mesh, off);
+  auto dark = make_progressive_state(s, mesh, off);
   shoot_emitters(*dark);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
     if (is_floor_vertex(mesh, v)) {
@@ -136,14 +136,14 @@ TEST(SpecularTransfer, RefinedVerticesGatherThroughTheMirrorImages) {
   const double kr = 0.9;
   const scene s = mirror_ceiling_scene(kr);
   const patch_mesh mesh = mesh_of(s, 0.25);
-  auto state = make_radiosity_state(s, mesh, progressive());
+  auto state = make_progressive_state(s, mesh, progressive());
   shoot_emitters(*state);
   std::vector<int> marked;
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     if (is_floor_vertex(mesh, std::size_t(mesh.elements[e][0]))) marked.push_back(int(e));
   std::string error;
   std::size_t added = 0;
-  ASSERT_TRUE(refine_radiosity(*state, marked, 0.01, error, &added)) << error;
+  ASSERT_TRUE(refine_progressive(*state, marked, 0.01, error, &added)) << error;
   ASSERT_GT(added, 100u);
   const patch_mesh& fine = *state->mesh;
   int checked = 0;
@@ -168,8 +168,8 @@ radiosity_params hierarchical(bool mirror_links, int specular_bounces) {
   return params;
 }
 
-void solve(radiosity_state& state, int steps = 200) {
-  for (int i = 0; i < steps && step_radiosity(state); ++i) {
+void solve(radiosity_solver& solver, int steps = 200) {
+  for (int i = 0; i < steps && step_solver(solver); ++i) {
   }
 }
 
@@ -189,14 +189,14 @@ TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmitters
   auto solve_at = [&](double tolerance) {
     radiosity_params params = hierarchical(true, 2);
     params.hierarchical.tolerance = tolerance;
-    auto state = make_radiosity_state(s, mesh, params);
-    solve(*state);
-    const hierarchical_solver& h = *state->hierarchy;
+    auto solver = make_radiosity_solver(s, mesh, params);
+    solve(*solver);
+    const hierarchical_solver& h = *hierarchical_of(*solver);
     EXPECT_EQ(h.hierarchy.chains.size(), 1u);
     EXPECT_GT(h.hierarchy.mirror_links.size(), 100u);
     EXPECT_EQ(h.progress.specular_passes, 0);  // a planar mirror alone: nothing left for the passes
     EXPECT_EQ(h.gathered.mirrored.size(), mesh.element_count());
-    EXPECT_EQ(state->caustic.size(), mesh.vertex_count());
+    EXPECT_EQ(make_snapshot(*solver)->caustic.size(), mesh.vertex_count());
     result out;
     double sum = 0.0, expected_sum = 0.0;
     for (std::size_t e = 0; e < h.gathered.mirrored.size(); ++e) {
@@ -251,9 +251,9 @@ TEST(SpecularTransfer, LinksThroughAMirrorSplitTheElementsWhereItsLightChanges) 
   auto solve_split = [&](bool links) {
     radiosity_params params = hierarchical(links, 2);
     params.hierarchical.split_elements = true;
-    auto state = make_radiosity_state(s, mesh, params);
-    solve(*state);
-    const patch_mesh& solved = state->hierarchy->mesh();
+    auto solver = make_radiosity_solver(s, mesh, params);
+    solve(*solver);
+    const patch_mesh& solved = solved_mesh(*solver);
     const double penumbra = mean_area(solved, 0.1, 0.2), open = mean_area(solved, 1.0, 1.5);
     std::printf("%s: %zu elements, mean floor element in the penumbra %.5f, on open floor %.5f\n",
                 links ? "links through the mirror" : "mirror images", solved.element_count(), penumbra, open);
@@ -272,10 +272,11 @@ TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors
   const scene s = mirror_ceiling_scene(kr);
   const patch_mesh mesh = mesh_of(s, 0.125);
   // No passes: the floor's own light back by the mirror is the test below.
-  auto state = make_radiosity_state(s, mesh, hierarchical(false, 0));
-  solve(*state, 100);
-  ASSERT_FALSE(state->hierarchy->sources.specular_lamp.empty());
-  EXPECT_TRUE(state->hierarchy->hierarchy.mirror_links.empty());
+  auto solver = make_radiosity_solver(s, mesh, hierarchical(false, 0));
+  solve(*solver, 100);
+  ASSERT_FALSE(hierarchical_of(*solver)->sources.specular_lamp.empty());
+  EXPECT_TRUE(hierarchical_of(*solver)->hierarchy.mirror_links.empty());
+  const auto solution = make_snapshot(*solver);
   double sum = 0.0, expected_sum = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const vec3 p = mesh.receive_points[v];
@@ -285,7 +286,7 @@ TEST(SpecularTransfer, HierarchicalSolverTakesTheLightOfTheSourcesThroughMirrors
         0.5 * pi * mirrored_point_parallel_rectangle(-0.1 - p.x, 0.1 - p.x, -0.1 - p.z, 0.1 - p.z, 1.0, 2.0, kr);
     // Not direct light (the clusters' links leak a little of the emitter's
     // back into the floor: that part is direct).
-    const double through_mirror = state->radiosity[v].g - state->direct[v].g;
+    const double through_mirror = solution->radiosity[v].g - solution->direct[v].g;
     EXPECT_NEAR(through_mirror, expected, 0.03 * expected) << "at " << p.x << ", " << p.z;
     sum += through_mirror;
     expected_sum += expected;
@@ -314,19 +315,19 @@ TEST(SpecularTransfer, HierarchicalSolverPassesDiffuseLightOnThroughMirrors) {
   // through the mirror (params.specular_bounces).
   const scene s = mirror_ceiling_scene(0.9);
   const patch_mesh mesh = mesh_of(s, 0.25);
-  auto reference = make_radiosity_state(s, mesh, progressive());
+  auto reference = make_progressive_state(s, mesh, progressive());
   // To 0.1% of the power unshot: well inside the 2% tolerance below.
-  for (int i = 0; i < 20000 && reference->stats.unshot_fraction > 1e-3 && step_radiosity(*reference); ++i) {
+  for (int i = 0; i < 20000 && reference->stats.unshot_fraction > 1e-3 && step_progressive(*reference); ++i) {
   }
   ASSERT_LE(reference->stats.unshot_fraction, 1e-3);
   const double expected = floor_mean(mesh, reference->radiosity);
 
   auto solve_with = [&](bool links, int bounces) {
-    auto state = make_radiosity_state(s, mesh, hierarchical(links, bounces));
-    solve(*state);
-    EXPECT_EQ(state->hierarchy->progress.specular_passes, links ? 0 : bounces);
-    EXPECT_EQ(state->hierarchy->hierarchy.mirror_links.empty(), !links);
-    return floor_mean(mesh, state->radiosity);
+    auto solver = make_radiosity_solver(s, mesh, hierarchical(links, bounces));
+    solve(*solver);
+    EXPECT_EQ(hierarchical_of(*solver)->progress.specular_passes, links ? 0 : bounces);
+    EXPECT_EQ(hierarchical_of(*solver)->hierarchy.mirror_links.empty(), !links);
+    return floor_mean(mesh, make_snapshot(*solver)->radiosity);
   };
   const double without = solve_with(false, 0), passes = solve_with(false, 3), links = solve_with(true, 3);
   std::printf("floor mean: progressive %.5f, hierarchical %.5f by links, %.5f by passes (%.5f without either)\n",
@@ -343,7 +344,7 @@ TEST(SpecularTransfer, PatchesOverTheRayBudgetAreStoodInForByTheBrightest) {
   // ceiling, uniformly bright, sends its light back to itself.
   const scene s = mirror_ceiling_scene(0.9);
   const patch_mesh mesh = mesh_of(s, 0.25);
-  auto state = make_radiosity_state(s, mesh, progressive(4));
+  auto state = make_progressive_state(s, mesh, progressive(4));
   std::vector<rgb> radiosity(mesh.patch_count(), rgb(0.0));
   for (std::size_t p = 0; p < mesh.patch_count(); ++p)
     if (mesh.patch_normals[p].y > 0.5 && std::abs(mesh.patch_corners[p][0].y) < 1e-12) radiosity[p] = rgb(1.0);
@@ -404,7 +405,7 @@ struct periscope {
 TEST(SpecularTransfer, TwoMirrorsLightTheFloorByTheImageOfTheImage) {
   const periscope scope;
   const patch_mesh mesh = mesh_of(scope.s, 0.2);
-  auto state = make_radiosity_state(scope.s, mesh, progressive());
+  auto state = make_progressive_state(scope.s, mesh, progressive());
   ASSERT_EQ(state->form_factors.mirrors->mirrors.size(), 2u);
   shoot_emitters(*state);
   const std::vector<vec3> image = scope.image();
@@ -422,24 +423,25 @@ TEST(SpecularTransfer, TwoMirrorsLightTheFloorByTheImageOfTheImage) {
 
   // The hierarchical solver's links through the chain of both mirrors:
   // the caustic part of its solution, per element, on the floor's middle.
-  auto h = make_radiosity_state(scope.s, mesh, hierarchical(true, 2));
+  auto h = make_radiosity_solver(scope.s, mesh, hierarchical(true, 2));
   solve(*h);
+  const std::vector<rgb> caustic = make_snapshot(*h)->caustic;
   double sum = 0.0, expected_sum = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const vec3 p = mesh.receive_points[v];
     if (!is_floor_vertex(mesh, v) || std::abs(p.x - 4.0) > 0.4 || std::abs(p.z) > 0.4) continue;
     const double expected =
         0.5 * pi * scope.kr1 * scope.kr2 * point_polygon_form_factor(p, vec3(0, 1, 0), std::span(image));
-    EXPECT_NEAR(h->caustic[v].g, expected, 0.05 * expected) << "at " << p.x << ", " << p.z;
-    sum += h->caustic[v].g;
+    EXPECT_NEAR(caustic[v].g, expected, 0.05 * expected) << "at " << p.x << ", " << p.z;
+    sum += caustic[v].g;
     expected_sum += expected;
   }
   EXPECT_NEAR(sum / expected_sum, 1.0, 0.02);
 
   // One reflection is not enough: at depth 1 the floor stays dark.
-  radiosity_params shallow = progressive();
+  progressive_params shallow = progressive();
   shallow.form_factors.mirror_depth = 1;
-  auto dark = make_radiosity_state(scope.s, mesh, shallow);
+  auto dark = make_progressive_state(scope.s, mesh, shallow);
   shoot_emitters(*dark);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
     if (is_floor_vertex(mesh, v)) {
@@ -466,9 +468,9 @@ TEST(SpecularTransfer, LightSeenByACurvedMirrorInAPlanarOneArrivesAsThePhotonsSa
   ball.geometry = sphere{vec3(0.0, 0.7, 0.0), 0.6, add_mirror(s, rgb(0.9))};
   s.surfaces.push_back(ball);
   const patch_mesh mesh = mesh_of(s, 0.25);
-  radiosity_params params = progressive();
+  progressive_params params = progressive();
   params.form_factors.specular_paths = 16384;
-  auto state = make_radiosity_state(s, mesh, params);
+  auto state = make_progressive_state(s, mesh, params);
   ASSERT_TRUE(state->form_factors.mirrors);
   ASSERT_TRUE(state->specular);
   std::uint64_t rays = 0;
@@ -498,7 +500,7 @@ TEST(SpecularTransfer, PointLightSeenInAMirror) {
   add_square(s, -2.0, 2.0, -2.0, 2.0, 2.0, false, add_mirror(s, rgb(kr)));
   s.lights.push_back({vec3(0, 1, 0), rgb(2.0)});
   const patch_mesh mesh = mesh_of(s, 0.25);
-  auto state = make_radiosity_state(s, mesh, progressive());
+  auto state = make_progressive_state(s, mesh, progressive());
   shoot_emitters(*state);
   int checked = 0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -548,9 +550,9 @@ TEST(SpecularTransfer, GlassSlabTransmitsWhatFresnelLeaves) {
   const double transmitted = (1.0 - f) / (1.0 + f);
   const scene s = slab_scene(true);
   const patch_mesh mesh = mesh_of(s, 0.5);
-  radiosity_params params = progressive();
+  progressive_params params = progressive();
   params.form_factors.specular_paths = 200000;
-  auto state = make_radiosity_state(s, mesh, params);
+  auto state = make_progressive_state(s, mesh, params);
   ASSERT_TRUE(state->specular);
   shoot_emitters(*state);
   // The floor's radiosity under the slab.
@@ -595,7 +597,7 @@ TEST(SpecularTransfer, GlassSlabTransmitsWhatFresnelLeaves) {
 
   // Off, the slab casts an opaque shadow.
   params.form_factors.specular_transfer = false;
-  auto opaque = make_radiosity_state(s, mesh, params);
+  auto opaque = make_progressive_state(s, mesh, params);
   shoot_emitters(*opaque);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const vec3 p = mesh.receive_points[v];
@@ -621,10 +623,10 @@ TEST(SpecularTransfer, PowerBooksBalanceWithMirrorsAndGlass) {
   ball.geometry = sphere{vec3(0.8, -1.4, 0.8), 0.5, add_mirror(s, rgb(0.9))};
   s.surfaces.push_back(ball);
   const patch_mesh mesh = mesh_of(s, 0.5);
-  auto state = make_radiosity_state(s, mesh, progressive(4));
+  auto state = make_progressive_state(s, mesh, progressive(4));
   ASSERT_TRUE(state->form_factors.mirrors);
   ASSERT_TRUE(state->specular);
-  for (int i = 0; i < 150 && step_radiosity(*state); ++i) {
+  for (int i = 0; i < 150 && step_progressive(*state); ++i) {
     const power_balance& b = state->balance;
     ASSERT_LE(balance_error(b), 1e-9) << "step " << i;
     const specular_tally& t = state->specular_paths;

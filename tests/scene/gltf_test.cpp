@@ -15,7 +15,7 @@
 
 #include "measure/closed_forms.h"
 #include "mesh_builders.h"
-#include "radiosity/radiosity.h"
+#include "radiosity/solver.h"
 #include "scene/obj_io.h"
 #include "scene/scene_io.h"
 #include "scene/texture.h"
@@ -533,14 +533,15 @@ TEST(Gltf, EmissiveQuadLightsTheQuadBelow) {
   const patch_mesh mesh = test_support::mesh_of(s, 0.2);
   radiosity_params params;
   params.form_factors.shadow_rays = 1;
-  auto state = make_radiosity_state(s, mesh, params);
+  auto solver = make_radiosity_solver(s, mesh, params);
   stop_criterion stop;
-  stop.unshot_fraction = 1e-6;
-  run_radiosity(*state, stop, [](const radiosity_state&) {});
+  stop.remaining = 1e-6;
+  run_solver(*solver, stop);
+  const power_balance& balance = progressive_of(*solver)->balance;
   const double emitted = std::numbers::pi * 1.0 * 1.0;
-  EXPECT_NEAR(state->balance.emitted.r, emitted, 1e-9);
-  EXPECT_NEAR(state->balance.received.r / emitted, 0.5 * parallel_rectangles(1, 1, 1), 0.003);
-  EXPECT_LT(balance_error(state->balance), 1e-9);
+  EXPECT_NEAR(balance.emitted.r, emitted, 1e-9);
+  EXPECT_NEAR(balance.received.r / emitted, 0.5 * parallel_rectangles(1, 1, 1), 0.003);
+  EXPECT_LT(balance_error(balance), 1e-9);
 }
 
 }  // namespace

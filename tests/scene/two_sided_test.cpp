@@ -8,13 +8,13 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
-#include "radiosity/radiosity.h"
-#include "trace/radiosity_field.h"
+#include "radiosity/solver.h"
 #include "scene/camera_math.h"
 #include "scene/scene_io.h"
 #include "scene/two_sided.h"
 #include "test_files.h"
 #include "trace/back_faces.h"
+#include "trace/radiosity_field.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {
@@ -66,19 +66,20 @@ TEST(TwoSided, BothSidesReceiveTheirOwnLight) {
   for (const solver_method method : {solver_method::progressive, solver_method::hierarchical}) {
     radiosity_params p;
     p.method = method;
-    auto state = make_radiosity_state(s, mesh, p);
+    auto solver = make_radiosity_solver(s, mesh, p);
     stop_criterion stop;
-    stop.unshot_fraction = 1e-9;
-    stop.max_shots = 400;
-    run_radiosity(*state, stop, [](const radiosity_state&) {});
+    stop.remaining = 1e-9;
+    stop.max_steps = 400;
+    run_solver(*solver, stop);
+    const auto solution = make_snapshot(*solver);
     int up = 0, down = 0;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       if (mesh.normals[v].y > 0.5) {
         ++up;
-        EXPECT_NEAR(state->radiosity[v].r, 0.5 * (pi * 1.0 + 2.0 * pi / 3.0), 0.02 * 0.5 * 3.0 * pi) << v;
+        EXPECT_NEAR(solution->radiosity[v].r, 0.5 * (pi * 1.0 + 2.0 * pi / 3.0), 0.02 * 0.5 * 3.0 * pi) << v;
       } else {
         ++down;
-        EXPECT_NEAR(state->radiosity[v].r, 0.5 * pi * 1.0, 1e-9) << name_of(method) << " vertex " << v;
+        EXPECT_NEAR(solution->radiosity[v].r, 0.5 * pi * 1.0, 1e-9) << name_of(method) << " vertex " << v;
       }
     }
     EXPECT_GT(up, 4);
@@ -107,11 +108,12 @@ TEST(TwoSided, AnUpsideDownFloorIsLitWhenTwoSided) {
   };
   auto mean_floor = [](const scene& s, integrator method) {
     const patch_mesh mesh = mesh_of(s, 0.2);
-    auto state = make_radiosity_state(s, mesh, radiosity_params{});
+    auto solver = make_radiosity_solver(s, mesh, radiosity_params{});
     stop_criterion stop;
-    stop.unshot_fraction = 1e-6;
-    run_radiosity(*state, stop, [](const radiosity_state&) {});
-    const radiosity_field field(*state->mesh, state->radiosity, state->direct);
+    stop.remaining = 1e-6;
+    run_solver(*solver, stop);
+    const auto solution = make_snapshot(*solver);
+    const radiosity_field field(solved_mesh(*solver), solution->radiosity, solution->direct);
     const ray_scene rays(s);
     trace_params p;
     p.method = method;

@@ -12,11 +12,11 @@
 #include "image/image_metrics.h"
 #include "measure/closed_forms.h"
 #include "mesh_builders.h"
-#include "radiosity/radiosity.h"
-#include "trace/radiosity_field.h"
+#include "radiosity/solver.h"
 #include "scene/camera_math.h"
 #include "trace/irradiance_cache.h"
 #include "trace/progressive_photons.h"
+#include "trace/radiosity_field.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {
@@ -199,16 +199,17 @@ TEST(ProgressivePhotons, GridCountsPhotonsWithinTheRadiusOnTheSameSide) {
 // (the field and the solver keep references to the mesh).
 struct solution {
   patch_mesh mesh;
-  std::unique_ptr<radiosity_state> state;
+  std::unique_ptr<radiosity_solver> solver;
   std::unique_ptr<radiosity_field> field;
   solution(const scene& s, double max_edge, double until = 1e-6) {
     std::string error;
     mesher_params mp;
     mp.max_edge = max_edge;
     EXPECT_TRUE(make_patch_mesh(s, mp, mesh, error)) << error;
-    state = make_radiosity_state(s, mesh, radiosity_params{});
-    run_radiosity(*state, stop_criterion{until, 0, 0}, [](const radiosity_state&) {});
-    field = std::make_unique<radiosity_field>(mesh, state->radiosity, state->direct);
+    solver = make_radiosity_solver(s, mesh, radiosity_params{});
+    run_solver(*solver, stop_criterion{until, 0, 0});
+    const auto solved = make_snapshot(*solver);
+    field = std::make_unique<radiosity_field>(mesh, solved->radiosity, solved->direct);
   }
   solution(const solution&) = delete;
   solution& operator=(const solution&) = delete;

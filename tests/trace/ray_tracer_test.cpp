@@ -9,12 +9,12 @@
 #include "base/random_stream.h"
 #include "image/image_metrics.h"
 #include "mesh_builders.h"
-#include "radiosity/radiosity.h"
-#include "trace/radiosity_field.h"
+#include "radiosity/solver.h"
 #include "scene/camera_math.h"
 #include "scene/scene_io.h"
 #include "scene/texture.h"
 #include "test_files.h"
+#include "trace/radiosity_field.h"
 #include "trace/ray_tracer.h"
 
 namespace bounce {
@@ -286,9 +286,10 @@ TEST(TwoPass, FurnaceStillIsTheExactRadianceEverywhere) {
   patch_mesh mesh;
   const scene s = small_furnace(mesh);
   ASSERT_GT(mesh.element_count(), 0u);
-  auto state = make_radiosity_state(s, mesh, radiosity_params{});
-  run_radiosity(*state, stop_criterion{1e-7, 0, 0}, [](const radiosity_state&) {});
-  const radiosity_field field(mesh, state->radiosity, state->direct);
+  auto solver = make_radiosity_solver(s, mesh, radiosity_params{});
+  run_solver(*solver, stop_criterion{1e-7, 0, 0});
+  const auto solution = make_snapshot(*solver);
+  const radiosity_field field(mesh, solution->radiosity, solution->direct);
   const ray_scene rays(s);
   for (diffuse_source mode : {diffuse_source::radiosity, diffuse_source::traced_direct}) {
     trace_params p;
@@ -311,14 +312,15 @@ TEST(TwoPass, AmbientStandsInForTheLightStillUnshot) {
   patch_mesh mesh;
   const scene s = small_furnace(mesh);
   ASSERT_GT(mesh.element_count(), 0u);
-  auto state = make_radiosity_state(s, mesh, radiosity_params{});
-  run_radiosity(*state, stop_criterion{0.35, 0, 0}, [](const radiosity_state&) {});
-  ASSERT_GT(state->stats.unshot_fraction, 0.1);
+  auto solver = make_radiosity_solver(s, mesh, radiosity_params{});
+  run_solver(*solver, stop_criterion{0.35, 0, 0});
+  ASSERT_GT(solver->stats.remaining, 0.1);
+  const auto solution = make_snapshot(*solver);
   const ray_scene rays(s);
   trace_params p;
   p.diffuse = diffuse_source::radiosity;
-  const radiosity_field bare(mesh, state->radiosity, state->direct);
-  const radiosity_field with_ambient(mesh, state->radiosity, state->direct, ambient_radiosity(*state));
+  const radiosity_field bare(mesh, solution->radiosity, solution->direct);
+  const radiosity_field with_ambient(mesh, solution->radiosity, solution->direct, solution->ambient);
   const double dark = mean_radiance(trace_image(s, s.view, rays, &bare, p));
   const double lit = mean_radiance(trace_image(s, s.view, rays, &with_ambient, p));
   // Measured: 1.648 without the ambient term, 1.998 with it.

@@ -10,15 +10,6 @@
 namespace bounce {
 namespace {
 
-double longest_edge(const patch_mesh& mesh, int element) {
-  const glm::ivec3 t = mesh.elements[std::size_t(element)];
-  double longest = 0.0;
-  for (int k = 0; k < 3; ++k)
-    longest =
-        std::max(longest, glm::length(mesh.positions[std::size_t(t[(k + 1) % 3])] - mesh.positions[std::size_t(t[k])]));
-  return longest;
-}
-
 // Per element of the refined mesh, the value its element had.
 template <typename value>
 std::vector<value> carried(const std::vector<value>& old, const std::vector<int>& from) {
@@ -58,7 +49,7 @@ int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>&
     error = (hi - lo) * transfer;
   }
   const double ratio = error / tolerance;
-  if (!(ratio > 1.0) || !(longest_edge(mesh, r.element) > solver.meshes.min_edge)) return 0;
+  if (!(ratio > 1.0) || !(element_longest_edge(mesh, std::size_t(r.element)) > solver.meshes.min_edge)) return 0;
   return std::clamp(int(std::ceil(std::log2(ratio))), 1, solver.params.max_bisections);
 }
 

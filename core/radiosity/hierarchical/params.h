@@ -24,7 +24,7 @@ struct hierarchical_params {
   // emitted power: each tolerance solved as far as the oracle needs.
   double refine_below = 0.02;
   // Past it no link is split (the pairs under way become links, at most
-  // two per tree node more) and a warning says so: 512 MiB of links.
+  // two per tree node more) and a warning says so: 512 MB of links.
   std::size_t max_links = 32'000'000;
   bool normalize_closed = true;
   // Largest final gather (kernel evaluations) made at each publication.

@@ -89,6 +89,7 @@ void iterate(hierarchical_solver& solver, double refine_below) {
 std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, const patch_mesh& mesh,
                                                               const form_factor_context& context,
                                                               const hierarchical_params& params) {
+  check_mesh_contract(mesh);
   auto solver = std::make_unique<hierarchical_solver>();
   solver->meshes.current = solver->meshes.input = &mesh;
   solver->source = &s;

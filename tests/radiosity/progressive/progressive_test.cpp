@@ -8,8 +8,9 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
-#include "radiosity/radiosity.h"
-#include "radiosity/reference_solver.h"
+#include "radiosity/progressive/progressive.h"
+#include "radiosity/progressive/reference_solver.h"
+#include "radiosity/solver.h"
 #include "scene/scene_io.h"
 
 namespace bounce {
@@ -23,16 +24,19 @@ using test_support::furnace;
 
 using test_support::mesh_of;
 
-radiosity_params with_rays(int rays) {
-  radiosity_params p;
+progressive_params with_rays(int rays) {
+  progressive_params p;
   p.form_factors.shadow_rays = rays;
   return p;
 }
 
-void run_until(radiosity_state& state, double fraction) {
-  stop_criterion stop;
-  stop.unshot_fraction = fraction;
-  run_radiosity(state, stop, [](const radiosity_state&) {});
+// Shoots until the point lights have shot and the unshot fraction is at
+// most `fraction` (0: no limit), after `max_shots` shots (0: no limit), or
+// when nothing is left.
+void run_until(progressive_state& state, double fraction, std::uint64_t max_shots = 0) {
+  while (!(fraction > 0.0 && state.lights_shot && state.stats.unshot_fraction <= fraction) &&
+         !(max_shots > 0 && state.stats.shots >= max_shots) && step_progressive(state)) {
+  }
 }
 
 scene cornell(double scale = 1.0) {
@@ -47,8 +51,8 @@ scene cornell(double scale = 1.0) {
 TEST(Radiosity, PowerBalanceHoldsAtEveryStep) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
-  auto state = make_radiosity_state(s, mesh, with_rays(4));
-  for (int i = 0; i < 300 && step_radiosity(*state); ++i) {
+  auto state = make_progressive_state(s, mesh, with_rays(4));
+  for (int i = 0; i < 300 && step_progressive(*state); ++i) {
     const power_balance& b = state->balance;
     const rgb in = b.emitted + b.received, out = b.shot + b.unshot;
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(in[c], out[c], 1e-12 * in[c]) << "step " << i;
@@ -61,10 +65,10 @@ TEST(Radiosity, PowerBalanceHoldsAtEveryStep) {
 TEST(Radiosity, UnshotFractionFallsMonotonically) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
-  auto state = make_radiosity_state(s, mesh, with_rays(4));
+  auto state = make_progressive_state(s, mesh, with_rays(4));
   double previous = state->stats.unshot_fraction;
   EXPECT_EQ(previous, 1.0);
-  while (state->stats.shots < 200 && step_radiosity(*state)) {
+  while (state->stats.shots < 200 && step_progressive(*state)) {
     EXPECT_LE(state->stats.unshot_fraction, previous + 1e-15);
     previous = state->stats.unshot_fraction;
   }
@@ -75,7 +79,7 @@ TEST(Radiosity, WhiteFurnace) {
   for (double rho : {0.5, 0.99, 0.999}) {
     scene s = furnace(rho);
     patch_mesh mesh = mesh_of(s, 2.0);
-    auto state = make_radiosity_state(s, mesh, with_rays(1));
+    auto state = make_progressive_state(s, mesh, with_rays(1));
     // The unshot fraction bounds the relative error by 1 / (1 - rho).
     run_until(*state, 1e-4 * (1 - rho));
     const double exact = pi / (1 - rho);
@@ -116,7 +120,7 @@ TEST(Radiosity, SphereInteriorConvergesWithRefinement) {
   double previous = 1.0;
   for (double max_edge : {0.8, 0.5}) {
     patch_mesh mesh = mesh_of(s, max_edge);
-    auto state = make_radiosity_state(s, mesh, with_rays(1));
+    auto state = make_progressive_state(s, mesh, with_rays(1));
     run_until(*state, 1e-5);
     double emitting_area = 0.0, area = 0.0;
     for (std::size_t e = 0; e < mesh.element_count(); ++e) {
@@ -139,7 +143,7 @@ TEST(Radiosity, ProgressiveConvergesToTheReferenceOnTheCornellBox) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
   EXPECT_NEAR(double(mesh.element_count()), 500.0, 100.0);
-  auto state = make_radiosity_state(s, mesh, with_rays(16));
+  auto state = make_progressive_state(s, mesh, with_rays(16));
   run_until(*state, 1e-6);
   reference_solution ref;
   std::string error;
@@ -159,11 +163,11 @@ TEST(Radiosity, ProgressiveConvergesToTheReferenceOnTheCornellBox) {
 TEST(Radiosity, HemicubeSolutionIsCloseToTheRaycastOne) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
-  auto ray = make_radiosity_state(s, mesh, with_rays(16));
-  radiosity_params hp;
+  auto ray = make_progressive_state(s, mesh, with_rays(16));
+  progressive_params hp;
   hp.form_factors.method = form_factor_method::hemicube;
   hp.form_factors.hemicube_resolution = 128;
-  auto cube = make_radiosity_state(s, mesh, hp);
+  auto cube = make_progressive_state(s, mesh, hp);
   run_until(*ray, 1e-3);
   run_until(*cube, 1e-3);
   // Total reflected power agrees within a few percent (measured: the
@@ -183,8 +187,8 @@ TEST(Radiosity, PointLightGivesTheInverseSquareLaw) {
   add_polygon(s, {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, white);  // faces +y
   s.lights.push_back({vec3(0.3, 2, 0.1), rgb(10, 20, 30)});
   patch_mesh mesh = mesh_of(s, 0.5);
-  auto state = make_radiosity_state(s, mesh, with_rays(1));
-  ASSERT_TRUE(step_radiosity(*state));
+  auto state = make_progressive_state(s, mesh, with_rays(1));
+  ASSERT_TRUE(step_progressive(*state));
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const vec3 d = s.lights[0].position - mesh.receive_points[v];
     const double irradiance = d.y / std::pow(glm::length(d), 3.0);
@@ -200,8 +204,8 @@ TEST(Radiosity, PointLightGivesTheInverseSquareLaw) {
 TEST(Radiosity, DirectPartIsWhatCameStraightFromEmitters) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
-  auto state = make_radiosity_state(s, mesh, with_rays(4));
-  ASSERT_TRUE(step_radiosity(*state));  // the light's first element
+  auto state = make_progressive_state(s, mesh, with_rays(4));
+  ASSERT_TRUE(step_progressive(*state));  // the light's first element
   run_until(*state, 1e-3);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     for (int c = 0; c < 3; ++c) {
@@ -222,7 +226,7 @@ TEST(Radiosity, SymmetricSceneGivesSymmetricSolution) {
   s.materials.back().ke = rgb(5.0);
   std::get<polygon_mesh>(s.surfaces[5].geometry).faces[0].material = int(s.materials.size()) - 1;  // y = 2
   patch_mesh mesh = mesh_of(s, 0.3);
-  auto state = make_radiosity_state(s, mesh, with_rays(1));
+  auto state = make_progressive_state(s, mesh, with_rays(1));
   run_until(*state, 1e-5);
   std::size_t pairs = 0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
@@ -247,8 +251,8 @@ TEST(Radiosity, SymmetricSceneGivesSymmetricSolution) {
 TEST(Radiosity, RerunGivesTheSameNumbers) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
-  auto a = make_radiosity_state(s, mesh, with_rays(16));
-  auto b = make_radiosity_state(s, mesh, with_rays(16));
+  auto a = make_progressive_state(s, mesh, with_rays(16));
+  auto b = make_progressive_state(s, mesh, with_rays(16));
   run_until(*a, 1e-2);
   run_until(*b, 1e-2);
   EXPECT_EQ(a->stats.shots, b->stats.shots);
@@ -258,11 +262,11 @@ TEST(Radiosity, RerunGivesTheSameNumbers) {
 TEST(Radiosity, RestartStartsOverWithTheSameResult) {
   scene s = cornell();
   patch_mesh mesh = mesh_of(s, 150.0);
-  auto state = make_radiosity_state(s, mesh, with_rays(4));
+  auto state = make_progressive_state(s, mesh, with_rays(4));
   run_until(*state, 1e-2);
   const std::vector<rgb> first = state->radiosity;
   const std::uint64_t shots = state->stats.shots;
-  restart_radiosity(*state);
+  restart_progressive(*state);
   EXPECT_EQ(state->stats.shots, 0u);
   EXPECT_EQ(state->stats.unshot_fraction, 1.0);
   EXPECT_EQ(state->radiosity, mesh.vertex_emission);
@@ -274,13 +278,13 @@ TEST(Radiosity, RestartStartsOverWithTheSameResult) {
 TEST(Radiosity, ScaleDoesNotChangeTheAnswer) {
   scene unit = cornell(1.0);
   patch_mesh base_mesh = mesh_of(unit, 150.0);
-  auto base = make_radiosity_state(unit, base_mesh, with_rays(16));
+  auto base = make_progressive_state(unit, base_mesh, with_rays(16));
   run_until(*base, 1e-4);
   for (double scale : {1e-3, 1e4}) {
     scene s = cornell(scale);
     patch_mesh mesh = mesh_of(s, 150.0 * scale);
     ASSERT_EQ(mesh.vertex_count(), base_mesh.vertex_count());
-    auto state = make_radiosity_state(s, mesh, with_rays(16));
+    auto state = make_progressive_state(s, mesh, with_rays(16));
     run_until(*state, 1e-4);
     // Vertex order may differ (bisection breaks ties by rounding), so
     // vertices are matched by surface, scaled position and normal (a
@@ -326,8 +330,8 @@ TEST(Radiosity, PatchesShootTheSamePowerAndStayCloseToElementShooting) {
   patch_mesh fine_shooters;
   ASSERT_TRUE(make_patch_mesh(s, {100.0, 30.0, 0.0}, fine_shooters, error)) << error;
   ASSERT_EQ(mesh.positions, fine_shooters.positions);  // the same elements either way
-  auto patches = make_radiosity_state(s, mesh, with_rays(16));
-  auto elements = make_radiosity_state(s, fine_shooters, with_rays(16));
+  auto patches = make_progressive_state(s, mesh, with_rays(16));
+  auto elements = make_progressive_state(s, fine_shooters, with_rays(16));
   run_until(*patches, 1e-4);
   run_until(*elements, 1e-4);
   EXPECT_LT(patches->stats.shots * 4, elements->stats.shots);
@@ -347,9 +351,9 @@ TEST(Radiosity, PatchesShootTheSamePowerAndStayCloseToElementShooting) {
 TEST(Radiosity, AmbientTermIsForDisplayOnly) {
   scene s = furnace(0.5);
   patch_mesh mesh = mesh_of(s, 1.0);
-  auto state = make_radiosity_state(s, mesh, with_rays(1));
-  for (int i = 0; i < 10; ++i) step_radiosity(*state);
-  const rgb ambient = ambient_radiosity(*state);
+  auto state = make_progressive_state(s, mesh, with_rays(1));
+  for (int i = 0; i < 10; ++i) step_progressive(*state);
+  const rgb ambient = ambient_radiosity(mesh, state->unshot);
   EXPECT_GT(ambient.r, 0.0);
   // Early on, B + rho * ambient is much closer to the answer than B alone.
   const double exact = 2 * pi;
@@ -359,16 +363,20 @@ TEST(Radiosity, AmbientTermIsForDisplayOnly) {
     with_ambient += std::abs(state->radiosity[v].r + mesh.vertex_rho[v].r * ambient.r - exact);
   }
   EXPECT_LT(with_ambient, 0.2 * plain);
-  // The snapshot carries it separately; the stored solution is unchanged.
-  auto snap = make_snapshot(*state);
+  // The published snapshot carries it separately; the solution is unchanged.
+  radiosity_params params;
+  params.form_factors.shadow_rays = 1;
+  auto solver = make_radiosity_solver(s, mesh, params);
+  for (int i = 0; i < 10; ++i) step_solver(*solver);
+  auto snap = make_snapshot(*solver);
   EXPECT_EQ(snap->radiosity[0], state->radiosity[0]);
   EXPECT_EQ(snap->ambient, ambient);
-  EXPECT_EQ(snap->version, state->stats.shots);
+  EXPECT_EQ(snap->version, 10u);
 }
 
 // ---- hard cases ----
 
-void expect_sane(const radiosity_state& state) {
+void expect_sane(const progressive_state& state) {
   for (const rgb& b : state.radiosity)
     for (int c = 0; c < 3; ++c) {
       ASSERT_TRUE(std::isfinite(b[c]));
@@ -388,7 +396,7 @@ TEST(RadiosityHardCases, PerpendicularSquaresSharingAnEdge) {
   add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, lamp);  // faces +z
   add_polygon(s, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, wall);  // faces +y
   patch_mesh mesh = mesh_of(s, 0.05);
-  auto state = make_radiosity_state(s, mesh, with_rays(4));
+  auto state = make_progressive_state(s, mesh, with_rays(4));
   run_until(*state, 1e-9);
   expect_sane(*state);
   form_factor_context context = make_form_factor_context(mesh, with_rays(4).form_factors);
@@ -411,7 +419,7 @@ TEST(RadiosityHardCases, SliverElements) {
   add_polygon(s, {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, floor);
   add_polygon(s, {{-0.5, 1, -0.5e-4}, {0.5, 1, -0.5e-4}, {0.5, 1, 0.5e-4}, {-0.5, 1, 0.5e-4}}, lamp);  // faces -y
   patch_mesh mesh = mesh_of(s, 0.25);
-  auto state = make_radiosity_state(s, mesh, with_rays(16));
+  auto state = make_progressive_state(s, mesh, with_rays(16));
   run_until(*state, 1e-9);
   expect_sane(*state);
   // Under the strip's middle the floor receives the strip's form factor.
@@ -431,7 +439,7 @@ TEST(RadiosityHardCases, EmitterTouchingAWall) {
   // A vertical light panel standing on the floor against the x = 0 wall.
   add_polygon(s, {{0, 0, 0.3}, {0, 0.4, 0.3}, {0.4, 0.4, 0.3}, {0.4, 0, 0.3}}, lamp);  // faces +z, touches two walls
   patch_mesh mesh = mesh_of(s, 0.2);
-  auto state = make_radiosity_state(s, mesh, with_rays(16));
+  auto state = make_progressive_state(s, mesh, with_rays(16));
   run_until(*state, 1e-4);
   expect_sane(*state);
 }
@@ -439,13 +447,11 @@ TEST(RadiosityHardCases, EmitterTouchingAWall) {
 TEST(RadiosityHardCases, NearlyWhiteFurnaceStaysStableWithTheHemicube) {
   scene s = furnace(0.999);
   patch_mesh mesh = mesh_of(s, 2.0);
-  radiosity_params hp;
+  progressive_params hp;
   hp.form_factors.method = form_factor_method::hemicube;
   hp.form_factors.hemicube_resolution = 64;
-  auto state = make_radiosity_state(s, mesh, hp);
-  stop_criterion stop;
-  stop.max_shots = 2000;
-  run_radiosity(*state, stop, [](const radiosity_state&) {});
+  auto state = make_progressive_state(s, mesh, hp);
+  run_until(*state, 0.0, 2000);
   expect_sane(*state);
   // Monotone: never above the exact answer (the hemicube loses a little).
   for (const rgb& b : state->radiosity) EXPECT_LE(b.r, pi / 0.001 * 1.01);

@@ -1,6 +1,7 @@
-// Progressive shooting radiosity (Cohen, Chen, Wallace & Greenberg 1988)
-// received at vertices, shot from elements or from patches of elements
-// (substructuring, Cohen 1986).
+// Progressive shooting radiosity (Cohen, Chen, Wallace & Greenberg 1988),
+// the baseline solver: received at vertices, shot from elements or from
+// patches of elements (substructuring, Cohen 1986), with a posteriori mesh
+// refinement while shooting (adaptive_refinement.h).
 //
 // Discretisation (vertex collocation, shared with the reference solver):
 //   B_v = E_v + rho_v * sum_e F(v, e) * B_e,   B_e = mean of e's vertices,
@@ -22,20 +23,16 @@
 #include <string>
 #include <vector>
 
-#include "mesh/adaptive.h"
 #include "mesh/patch_mesh.h"
+#include "radiosity/progressive/adaptive_refinement.h"
 #include "radiosity/transfer/form_factor.h"
-#include "radiosity/hierarchical/solver.h"
-#include "radiosity/solver_settings.h"
 #include "radiosity/transfer/specular_paths.h"
 
 namespace bounce {
 
-struct radiosity_params {
-  solver_method method = solver_method::progressive;
+struct progressive_params {
   form_factor_params form_factors;
-  adaptive_params adaptive;  // a posteriori refinement during shooting (off by default; progressive only)
-  hierarchical_params hierarchical;
+  adaptive_params adaptive;  // a posteriori refinement during shooting (off by default)
 };
 
 // Power bookkeeping, per channel, in the scene's power units (radiosity x
@@ -68,38 +65,26 @@ struct shot_record {
   rgb emission{0.0};  // the part of it that was the shooter's own emission
 };
 
-struct radiosity_stats {
-  std::uint64_t shots = 0;
+struct progressive_stats {
+  std::uint64_t shots = 0;        // the point lights' shot counts as one
   std::uint64_t refinements = 0;  // adaptive passes that changed the mesh
   std::uint64_t rays = 0;
-  double seconds = 0.0;          // wall time spent in steps
   double unshot_fraction = 1.0;  // unshot power / emitted power (sum of channels)
-  // Hierarchical solver: links, the oracle's tolerance, and whether it has
-  // reached its final value (the unshot fraction is then the residual at
-  // the final links; before, stopping on it would stop too coarse).
-  std::uint64_t links = 0;
-  double link_tolerance = 0.0;
-  bool links_final = true;
 };
 
-struct radiosity_state {
+struct progressive_state {
   const patch_mesh* mesh = nullptr;
-  std::shared_ptr<const patch_mesh> refined_mesh;  // set by refine_radiosity: the mesh now in use
+  std::shared_ptr<const patch_mesh> refined_mesh;  // set by refine_progressive: the mesh now in use
   const scene* source = nullptr;
-  radiosity_params params;
+  progressive_params params;
   form_factor_context form_factors;
 
-  std::vector<rgb> radiosity;  // B per vertex
-  std::vector<rgb> direct;     // the part of B received straight from emitters and point lights
-  // The part of B received from emitters and point lights by way of
-  // mirrors and glass (L S+ D), per vertex, where the solver keeps it
-  // apart (the hierarchical solver); empty otherwise. The still replaces
-  // it with the caustic photon map where detail matters (ray_tracer.cpp).
-  std::vector<rgb> caustic;
+  std::vector<rgb> radiosity;        // B per vertex
+  std::vector<rgb> direct;           // the part of B received straight from emitters and point lights
   std::vector<rgb> unshot;           // U per element
   std::vector<rgb> unshot_emission;  // the part of U that is the element's own emission, not yet shot
   power_balance balance;
-  radiosity_stats stats;
+  progressive_stats stats;
   bool lights_shot = false;
   std::vector<double> scratch;      // form factors of the current shot
   std::vector<rgb> received;        // what each vertex received in the current shot
@@ -118,26 +103,24 @@ struct radiosity_state {
   std::vector<rgb> specular_received;  // per vertex, the current shot's light through mirrors and glass
   std::vector<rgb> traced_irradiance;  // per vertex, the current shot's specular paths
   specular_tally specular_paths;
-  // The hierarchical solver (params.method == hierarchical); the vertex
-  // arrays above are then published from its element solution after
-  // every step, and `unshot` holds each element's residual.
-  std::unique_ptr<hierarchical_solver> hierarchy;
 };
 
 // Sets B = E, U = M E, and prepares the form-factor method.
-std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
-                                                      const radiosity_params& params);
+std::unique_ptr<progressive_state> make_progressive_state(const scene& s, const patch_mesh& mesh,
+                                                          const progressive_params& params);
 
 // Back to B = E, U = M E, keeping the form-factor method (and its BVH) and
 // the mesh (refined, if it was); the refinement schedule starts again.
-void restart_radiosity(radiosity_state& state);
+void restart_progressive(progressive_state& state);
 
 // One step: point lights first (all of them, with shadow rays), then one
 // patch shot, or, with adaptive refinement on and due, a refinement pass
-// (state.mesh then changes). With the hierarchical solver, one of its
-// steps (hierarchical.h): links made or refined, or a block of
-// iterations. Returns false when nothing is left to do.
-bool step_radiosity(radiosity_state& state);
+// (state.mesh then changes). Returns false when nothing is left to do.
+bool step_progressive(progressive_state& state);
+
+// Whether every emitter and point light has shot at least once: the
+// direct light is everywhere.
+bool all_emission_shot(const progressive_state& state);
 
 // Refines the state's mesh (refine_patch_mesh: the marked elements, no
 // edge below min_edge) and carries the solution over exactly: each new
@@ -148,43 +131,7 @@ bool step_radiosity(radiosity_state& state);
 // one may then be released). Returns false with `error` if the mesh would
 // grow too large; the state is then unchanged. `new_vertices` (may be
 // null) receives how many vertices were added.
-bool refine_radiosity(radiosity_state& state, std::span<const int> marked, double min_edge, std::string& error,
-                      std::size_t* new_vertices = nullptr);
-
-// Steps until `stop` holds (counted from the solver's start, not from this
-// call: solver_settings.h) or nothing is left. `on_step` (may be
-// empty) runs after every step, e.g. to publish a snapshot.
-template <typename callback>
-void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step);
-
-// Ambient term of Cohen 1988 for display only: the unshot power spread
-// evenly, reflected with the mean reflectance. Never stored in B.
-rgb ambient_radiosity(const radiosity_state& state);
-
-// Area-weighted mean irradiance that did not come straight from an emitter
-// (what arrives after one or more reflections): the constant ambient term
-// of a one-pass Whitted still, taken from a (coarse) solution.
-rgb mean_indirect_irradiance(const radiosity_state& state);
-
-// An immutable copy of the solution, for the view and the stills. Its
-// arrays belong to the state's mesh at the time (state.mesh: refined, with
-// adaptive meshing); whoever shows it keeps that mesh with it.
-struct radiosity_snapshot {
-  std::uint64_t version = 0;       // shots and refinements so far; increases with every step
-  std::vector<rgb> radiosity;      // per vertex
-  std::vector<rgb> direct;         // per vertex: the part of radiosity straight from the lights
-  std::vector<rgb> caustic;        // per vertex: the part by way of mirrors and glass (may be empty)
-  std::vector<rgb> unshot_vertex;  // per vertex: mean unshot of its elements (false colour)
-  rgb ambient{0.0};
-  radiosity_stats stats;
-};
-std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state);
-
-// ---- template implementation ----
-
-template <typename callback>
-void run_radiosity(radiosity_state& state, const stop_criterion& stop, callback&& on_step) {
-  while (!stop_reached(state, stop) && step_radiosity(state)) on_step(state);
-}
+bool refine_progressive(progressive_state& state, std::span<const int> marked, double min_edge, std::string& error,
+                        std::size_t* new_vertices = nullptr);
 
 }  // namespace bounce

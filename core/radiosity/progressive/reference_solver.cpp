@@ -1,4 +1,4 @@
-#include "radiosity/reference_solver.h"
+#include "radiosity/progressive/reference_solver.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,11 +1,9 @@
-#include "radiosity/radiosity.h"
+#include "radiosity/progressive/progressive.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "base/check.h"
-#include "radiosity/hierarchical/publication.h"
 #include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/point_lights.h"
 
@@ -14,12 +12,11 @@ namespace {
 
 // Adds what the vertices received (delta per vertex) to every element's
 // unshot radiosity, a third from each vertex; returns the power added.
-rgb spread_to_elements(radiosity_state& state, const std::vector<rgb>& delta) {
+rgb spread_to_elements(progressive_state& state, const std::vector<rgb>& delta) {
   const patch_mesh& mesh = *state.mesh;
   rgb power(0.0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    const rgb mean = (delta[t[0]] + delta[t[1]] + delta[t[2]]) / 3.0;
+    const rgb mean = element_mean(mesh, delta, e);
     state.unshot[e] += mean;
     power += mean * mesh.element_areas[e];
   }
@@ -31,37 +28,34 @@ rgb spread_to_elements(radiosity_state& state, const std::vector<rgb>& delta) {
 rgb element_power(const patch_mesh& mesh, const std::vector<rgb>& delta) {
   rgb power(0.0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    power += (delta[t[0]] + delta[t[1]] + delta[t[2]]) / 3.0 * mesh.element_areas[e];
+    power += element_mean(mesh, delta, e) * mesh.element_areas[e];
   }
   return power;
 }
 
-bool specular_on(const radiosity_state& state) {
+bool specular_on(const progressive_state& state) {
   return state.form_factors.mirrors || state.specular;
 }
 
 // A different, reproducible stream of specular paths for every shot.
-std::uint64_t shot_seed(const radiosity_state& state) {
+std::uint64_t shot_seed(const progressive_state& state) {
   return state.params.form_factors.seed * 0x9E3779B97F4A7C15ull + state.stats.shots + 1;
 }
 
 // The mirrors and the specular elements of the state's mesh, when the
 // scene has specular materials and the transfer is on.
-void find_specular(radiosity_state& state, const scene& s) {
+void find_specular(progressive_state& state, const scene& s) {
   const form_factor_params& p = state.params.form_factors;
   state.form_factors.mirrors = nullptr;
   state.specular = nullptr;
   if (!p.specular_transfer || !has_specular_materials(s)) return;
   if (p.mirror_depth > 0) state.form_factors.mirrors = find_planar_mirrors(s, *state.mesh);
-  // The hierarchical solver finds its own specular elements (hierarchical.cpp).
-  if (p.specular_paths > 0 && state.params.method == solver_method::progressive)
-    state.specular = find_specular_surfaces(s, *state.mesh, state.form_factors.mirrors.get());
+  if (p.specular_paths > 0) state.specular = find_specular_surfaces(s, *state.mesh, state.form_factors.mirrors.get());
 }
 
 // Irradiance from the specular paths of one source, added as reflected
 // radiosity to `extra` and to state.traced.
-void trace_source(radiosity_state& state, const specular_source& source, std::vector<rgb>& extra) {
+void trace_source(progressive_state& state, const specular_source& source, std::vector<rgb>& extra) {
   const patch_mesh& mesh = *state.mesh;
   std::vector<rgb>& irradiance = state.traced_irradiance;
   std::fill(irradiance.begin(), irradiance.end(), rgb(0.0));
@@ -75,7 +69,7 @@ void trace_source(radiosity_state& state, const specular_source& source, std::ve
 }
 
 // What the point lights give by way of mirrors and glass, per vertex.
-std::vector<rgb> specular_light_of_lights(radiosity_state& state) {
+std::vector<rgb> specular_light_of_lights(progressive_state& state) {
   const patch_mesh& mesh = *state.mesh;
   std::vector<rgb> extra(mesh.vertex_count(), rgb(0.0));
   if (!specular_on(state) || state.source->lights.empty()) return extra;
@@ -92,7 +86,7 @@ std::vector<rgb> specular_light_of_lights(radiosity_state& state) {
   return extra;
 }
 
-void update_fraction(radiosity_state& state) {
+void update_fraction(progressive_state& state) {
   const patch_mesh& mesh = *state.mesh;
   // Refinement can make some unshot negative: the fraction counts its
   // magnitude, so that it cannot cancel the rest.
@@ -104,7 +98,7 @@ void update_fraction(radiosity_state& state) {
   state.stats.unshot_fraction = emitted > 0.0 ? (channel_sum(positive) - channel_sum(negative)) / emitted : 0.0;
 }
 
-void shoot_point_lights(radiosity_state& state) {
+void shoot_point_lights(progressive_state& state) {
   std::uint64_t rays = 0;
   std::vector<rgb> delta = point_light_radiosity(*state.source, *state.mesh, state.form_factors, rays);
   for (std::size_t v = 0; v < delta.size(); ++v) {
@@ -128,7 +122,7 @@ void shoot_point_lights(radiosity_state& state) {
 // Shoots a patch: its elements' unshot radiosity, as the patch's
 // area-weighted mean, through the patch's outline (Cohen 1986). With one
 // element per patch this is element shooting exactly.
-void shoot_patch(radiosity_state& state, std::size_t patch) {
+void shoot_patch(progressive_state& state, std::size_t patch) {
   const patch_mesh& mesh = *state.mesh;
   state.stats.rays += form_factors_to_patch(state.form_factors, int(patch), state.scratch);
   rgb power(0.0), emission_power(0.0);
@@ -190,19 +184,10 @@ void shoot_patch(radiosity_state& state, std::size_t patch) {
 
 }  // namespace
 
-std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patch_mesh& mesh,
-                                                      const radiosity_params& params) {
-  // The mesher's contract: every element names three vertices of the mesh
-  // and one of its patches.
-  BOUNCE_CHECK(mesh.element_patches.size() == mesh.element_count());
-  BOUNCE_CHECK(mesh.vertex_emission.size() == mesh.vertex_count());
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    BOUNCE_CHECK(t[0] >= 0 && t[1] >= 0 && t[2] >= 0);
-    BOUNCE_CHECK(std::size_t(std::max({t[0], t[1], t[2]})) < mesh.vertex_count());
-    BOUNCE_CHECK(std::size_t(mesh.element_patches[e]) < mesh.patch_count());
-  }
-  auto state = std::make_unique<radiosity_state>();
+std::unique_ptr<progressive_state> make_progressive_state(const scene& s, const patch_mesh& mesh,
+                                                      const progressive_params& params) {
+  check_mesh_contract(mesh);
+  auto state = std::make_unique<progressive_state>();
   state->mesh = &mesh;
   state->source = &s;
   state->params = params;
@@ -214,59 +199,13 @@ std::unique_ptr<radiosity_state> make_radiosity_state(const scene& s, const patc
   for (std::size_t e = 0; e < mesh.element_count(); ++e)
     state->patch_elements[mesh.element_patches[e]].push_back(int(e));
   state->patch_log.assign(mesh.patch_count(), -1);
-  find_specular(*state, s);  // the hierarchical solver takes the mirrors from the context
-  if (params.method == solver_method::hierarchical)
-    state->hierarchy = make_hierarchical_solver(s, mesh, state->form_factors, params.hierarchical);
-  restart_radiosity(*state);
+  find_specular(*state, s);
+  restart_progressive(*state);
   return state;
 }
 
-namespace {
-
-// The hierarchical solution at the vertices, its residual as the unshot
-// radiosity of the elements, and its progress as statistics.
-void publish_hierarchical(radiosity_state& state) {
-  hierarchical_solver& h = *state.hierarchy;
-  if (state.mesh != &h.mesh()) {  // elements were split (or a restart went back to the input mesh)
-    state.mesh = &h.mesh();
-    state.refined_mesh = h.meshes.refined;
-    state.form_factors.mesh = state.mesh;  // the same geometry: the occlusion scene stays
-    state.form_factors.vertex_areas.assign(state.mesh->vertex_count(), 0.0);
-    for (std::size_t e = 0; e < state.mesh->element_count(); ++e)
-      for (int k = 0; k < 3; ++k)
-        state.form_factors.vertex_areas[state.mesh->elements[e][k]] += state.mesh->element_areas[e] / 3.0;
-  }
-  vertex_light light = publish_vertex_light(h);
-  state.radiosity = std::move(light.radiosity);
-  state.direct = std::move(light.direct);
-  state.caustic = std::move(light.caustic);
-  state.unshot = h.residual;
-  state.stats.unshot_fraction = h.residual_fraction;
-  // A step of the hierarchical solver (a block of iterations, or links
-  // made or refined) counts as one shot: --max-shots and the frames
-  // written during a solve count steps.
-  state.stats.shots = h.progress.steps;
-  state.stats.refinements = std::uint64_t(std::max(0, h.progress.refinements - 1));
-  state.stats.rays = h.progress.rays;
-  state.stats.links = h.hierarchy.links.size();
-  state.stats.link_tolerance = h.progress.tolerance;
-  state.stats.links_final = solution_final(h);
-  state.balance = {};
-  state.balance.emitted = rgb(h.sources.emitted_power / 3.0);
-}
-
-}  // namespace
-
-void restart_radiosity(radiosity_state& state) {
+void restart_progressive(progressive_state& state) {
   const patch_mesh& mesh = *state.mesh;
-  if (state.hierarchy) {
-    restart_hierarchical(*state.hierarchy);
-    state.stats = {};
-    publish_hierarchical(state);
-    state.stats.unshot_fraction = 1.0;
-    state.lights_shot = false;  // until the first links have carried the direct light
-    return;
-  }
   state.radiosity = mesh.vertex_emission;
   state.direct.assign(mesh.vertex_count(), rgb(0.0));
   state.traced.assign(mesh.vertex_count(), rgb(0.0));
@@ -280,8 +219,7 @@ void restart_radiosity(radiosity_state& state) {
   std::fill(state.patch_log.begin(), state.patch_log.end(), -1);
   state.adaptive = {};
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    state.unshot[e] = (mesh.vertex_emission[t[0]] + mesh.vertex_emission[t[1]] + mesh.vertex_emission[t[2]]) / 3.0;
+    state.unshot[e] = element_mean(mesh, mesh.vertex_emission, e);
     state.balance.emitted += state.unshot[e] * mesh.element_areas[e];
   }
   state.unshot_emission = state.unshot;
@@ -290,15 +228,7 @@ void restart_radiosity(radiosity_state& state) {
   if (!state.lights_shot) state.stats.unshot_fraction = 1.0;  // the lights' power is still to come
 }
 
-bool step_radiosity(radiosity_state& state) {
-  const auto start = std::chrono::steady_clock::now();
-  if (state.hierarchy) {
-    if (!step_hierarchical(*state.hierarchy, state.params.hierarchical.refine_below)) return false;
-    publish_hierarchical(state);
-    state.lights_shot = true;
-    state.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return true;
-  }
+bool step_progressive(progressive_state& state) {
   if (!state.lights_shot) {
     shoot_point_lights(state);
     ++state.stats.shots;
@@ -322,9 +252,13 @@ bool step_radiosity(radiosity_state& state) {
   update_fraction(state);
   // The power bookkeeping holds to round-off after every step (the
   // balance is kept as running sums: checking it costs nothing).
-  BOUNCE_CHECK(balance_error(state.balance) <= 1e-6);
-  state.stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BOUNCE_CHECK_LE(balance_error(state.balance), 1e-6);
   return true;
+}
+
+bool all_emission_shot(const progressive_state& state) {
+  return state.lights_shot && std::all_of(state.unshot_emission.begin(), state.unshot_emission.end(),
+                                          [](const rgb& u) { return !(channel_sum(u) > 0.0); });
 }
 
 namespace {
@@ -335,7 +269,7 @@ bool same_triangle(const std::array<vec3, 3>& a, const std::array<vec3, 3>& b) {
 
 }  // namespace
 
-bool refine_radiosity(radiosity_state& state, std::span<const int> marked, double min_edge, std::string& error,
+bool refine_progressive(progressive_state& state, std::span<const int> marked, double min_edge, std::string& error,
                       std::size_t* new_vertices) {
   const patch_mesh& old = *state.mesh;
   auto refined = std::make_shared<patch_mesh>(old);
@@ -450,63 +384,6 @@ bool refine_radiosity(radiosity_state& state, std::span<const int> marked, doubl
 double balance_error(const power_balance& b) {
   const double in = channel_sum(b.emitted + b.received);
   return in > 0.0 ? std::abs(channel_sum(b.emitted + b.received + b.refined - b.shot - b.unshot)) / in : 0.0;
-}
-
-rgb ambient_radiosity(const radiosity_state& state) {
-  const patch_mesh& mesh = *state.mesh;
-  rgb reflectance(0.0), unshot(0.0);
-  double area = 0.0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const glm::ivec3 t = mesh.elements[e];
-    const rgb rho = (mesh.vertex_rho[t[0]] + mesh.vertex_rho[t[1]] + mesh.vertex_rho[t[2]]) / 3.0;
-    reflectance += rho * mesh.element_areas[e];
-    unshot += state.unshot[e] * mesh.element_areas[e];
-    area += mesh.element_areas[e];
-  }
-  if (!(area > 0.0)) return rgb(0.0);
-  // Interreflection factor 1 + rho + rho^2 + ... of the mean reflectance.
-  const rgb mean_rho = reflectance / area;
-  return unshot / area / (rgb(1.0) - mean_rho);
-}
-
-rgb mean_indirect_irradiance(const radiosity_state& state) {
-  const patch_mesh& mesh = *state.mesh;
-  rgb sum(0.0);
-  double area = 0.0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    rgb irradiance(0.0);
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.elements[e][k];
-      const rgb indirect = state.radiosity[v] - mesh.vertex_emission[v] - state.direct[v];
-      for (int c = 0; c < 3; ++c)
-        if (mesh.vertex_rho[v][c] > 0.0) irradiance[c] += indirect[c] / mesh.vertex_rho[v][c] / 3.0;
-    }
-    sum += irradiance * mesh.element_areas[e];
-    area += mesh.element_areas[e];
-  }
-  return area > 0.0 ? sum / area : rgb(0.0);
-}
-
-std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_state& state) {
-  const patch_mesh& mesh = *state.mesh;
-  auto snap = std::make_shared<radiosity_snapshot>();
-  snap->version = state.stats.shots + state.stats.refinements;
-  snap->stats = state.stats;
-  snap->ambient = ambient_radiosity(state);
-  snap->radiosity = state.radiosity;
-  snap->direct = state.direct;
-  snap->caustic = state.caustic;
-  std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
-  std::vector<int> count(mesh.vertex_count(), 0);
-  for (std::size_t e = 0; e < mesh.element_count(); ++e)
-    for (int k = 0; k < 3; ++k) {
-      sum[mesh.elements[e][k]] += state.unshot[e];
-      ++count[mesh.elements[e][k]];
-    }
-  snap->unshot_vertex.resize(mesh.vertex_count());
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-    snap->unshot_vertex[v] = count[v] ? sum[v] / double(count[v]) : rgb(0.0);
-  return snap;
 }
 
 }  // namespace bounce
