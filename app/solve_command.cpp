@@ -11,10 +11,10 @@
 #include "console.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/ply.h"
 #include "radiosity/occlusion.h"
 #include "radiosity/radiosity.h"
 #include "radiosity/reference_solver.h"
-#include "scene/ply.h"
 #include "solver_stats.h"
 
 namespace bounce {
