@@ -16,7 +16,7 @@
 #include "radiosity/radiosity.h"
 #include "radiosity/radiosity_field.h"
 #include "scene/camera_math.h"
-#include "scene/obj_io.h"
+#include "scene/reader_support.h"
 #include "scene/scene_info.h"
 #include "solver_stats.h"
 #include "trace/ray_tracer.h"

@@ -4,19 +4,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
-#include "base/embedded.h"
 #include "scene/gltf_io.h"
 #include "scene/obj_io.h"
 #include "scene/procedural.h"
+#include "scene/reader_support.h"
 #include "scene/scene_validate.h"
 #include "scene/tessellate.h"
 #include "scene/two_sided.h"
@@ -25,19 +22,12 @@ namespace bounce {
 namespace {
 
 using json = nlohmann::json;
-constexpr std::string_view embedded_prefix = "embedded:";
 
 bool ends_with_icase(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   for (std::size_t i = 0; i < suffix.size(); ++i)
     if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i]) return false;
   return true;
-}
-
-std::string resolve(const std::string& base_file, const std::string& relative) {
-  std::filesystem::path rel(relative);
-  if (rel.is_absolute()) return relative;
-  return (std::filesystem::path(base_file).parent_path() / rel).lexically_normal().string();
 }
 
 // Typed access to a JSON document; every error names the file and the
@@ -527,22 +517,6 @@ void warn_unreachable_emitters(const scene& s, load_report& report) {
 }
 
 }  // namespace
-
-std::optional<std::string> read_file(const std::string& path) {
-  if (path.rfind(embedded_prefix, 0) == 0) {
-    std::string_view name = std::string_view(path).substr(embedded_prefix.size());
-    for (const embedded_file& f : embedded_files())
-      if (f.path == name) return std::string(f.contents);
-    return std::nullopt;
-  }
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 
 bool load_scene(const std::string& path, scene& out, load_report& report) {
   report = {};

@@ -2,7 +2,6 @@
 // and the Cornell box embedded in the binary.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,9 +29,6 @@ inline constexpr std::string_view generated_prefix = "generated:";
 // fitted to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills
 // report.error with a message naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
-
-// Reads a file's bytes, from disk or from the embedded files.
-std::optional<std::string> read_file(const std::string& path);
 
 // Camera files hold the scene format's camera object: {"camera": {"eye":
 // ..., "target": ..., "up": ..., "fov": ..., "size": [w, h]}}; keys left
