@@ -15,6 +15,7 @@
 #include "panel.h"
 #include "radiosity/radiosity.h"
 #include "scene/camera_math.h"
+#include "scene/framing.h"
 #include "solver_stats.h"
 
 namespace bounce {

@@ -24,6 +24,7 @@
 #include "picture_quad.h"
 #include "rest_refiner.h"
 #include "scene/camera_math.h"
+#include "scene/framing.h"
 #include "scene/orbit.h"
 #include "scene/scene_io.h"
 #include "scripted_run.h"

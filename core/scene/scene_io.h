@@ -39,16 +39,4 @@ bool parse_camera_text(const std::string& text, const std::string& where, camera
 // `cam` as a camera file (every key written; numbers round-trip exactly).
 std::string camera_json(const camera& cam);
 
-// A camera that frames the scene's bounding box, looking horizontally from
-// the side that shows the most front-facing area (y is up).
-camera fit_camera(const scene& s);
-
-// Axis-aligned bounds of every surface (curved ones by their control
-// points or boxes).
-struct bounds3 {
-  vec3 min{0.0};
-  vec3 max{0.0};
-};
-bounds3 scene_bounds(const scene& s);
-
 }  // namespace bounce

@@ -1,7 +1,7 @@
 // Scene loading: the shipped scenes, round trips of every construct, and
 // every kind of bad input (each must fail with a message that names the
-// file and the line or object).
-#include <cmath>
+// file and the line or object). The fitted camera's cases are in
+// framing_test.cpp.
 #include <fstream>
 #include <sstream>
 
@@ -147,20 +147,6 @@ TEST(SceneIo, EveryShippedSceneLoads) {
     EXPECT_TRUE(load_scene(source_path(path), s, report)) << report.error;
     EXPECT_EQ(report.dropped_faces, 0u) << path;
   }
-}
-
-TEST(SceneIo, BareObjGetsACameraLookingIntoTheOpenSide) {
-  scene s = load_ok(source_path("assets/cornell_box/cornell_box.obj"));
-  // The box is open towards -z: the fitted camera stands there, looking +z.
-  EXPECT_LT(s.view.eye.z, 0.0);
-  EXPECT_NEAR(s.view.eye.x, s.view.target.x, 1e-9);
-  EXPECT_GT(s.view.target.z, s.view.eye.z);
-  // And it sees the whole bounding sphere.
-  bounds3 b = scene_bounds(s);
-  double radius = 0.5 * glm::length(b.max - b.min);
-  double distance = glm::length(s.view.target - s.view.eye);
-  EXPECT_GE(std::asin(radius / distance), 0.0);
-  EXPECT_LE(std::asin(radius / distance), glm::radians(s.view.fov_y_degrees) * 0.5 + 1e-9);
 }
 
 TEST(SceneIo, ObjRoundTrip) {
