@@ -1,5 +1,8 @@
 // Loading and validating scenes: JSON scene files, bare Wavefront OBJ/MTL,
-// and the Cornell box embedded in the binary.
+// glTF models, procedural scenes and the Cornell box embedded in the
+// binary. The readers (json_scene, obj_io, gltf_io) turn a file into a
+// scene; load_scene picks the reader, then drops degenerate faces, adds
+// back sides, validates and warns, so every scene it returns is valid.
 #pragma once
 
 #include <string>
