@@ -20,6 +20,7 @@
 #include "image/picture_file.h"
 #include "info_command.h"
 #include "render_command.h"
+#include "scene/camera_file.h"
 #include "scene/reader_support.h"
 #include "scene/scene_io.h"
 #include "scene/scene_validate.h"

@@ -33,13 +33,4 @@ inline constexpr std::string_view generated_prefix = "generated:";
 // report.error with a message naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
 
-// Camera files hold the scene format's camera object: {"camera": {"eye":
-// ..., "target": ..., "up": ..., "fov": ..., "size": [w, h]}}; keys left
-// out keep `cam`'s values. Errors name the file (`where`) and the key.
-bool load_camera_file(const std::string& path, camera& cam, std::string& error);
-bool parse_camera_text(const std::string& text, const std::string& where, camera& cam, std::string& error);
-
-// `cam` as a camera file (every key written; numbers round-trip exactly).
-std::string camera_json(const camera& cam);
-
 }  // namespace bounce

@@ -14,10 +14,10 @@
 #include <imgui_internal.h>
 
 #include "mesh_builders.h"
-#include "test_files.h"
 #include "panel.h"
-#include "scene/scene_io.h"
+#include "scene/camera_file.h"
 #include "solver_worker.h"
+#include "test_files.h"
 #include "user_files.h"
 
 namespace bounce {
