@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "image/picture_file.h"
-#include "scene/obj_io.h"
+#include "scene/reader_support.h"
 
 namespace bounce {
 namespace {

@@ -20,6 +20,7 @@
 #include "mesh/patch_mesh.h"
 #include "radiosity/solve.h"
 #include "scene/camera_math.h"
+#include "scene/framing.h"
 #include "viewer/panel.h"
 
 namespace bounce {

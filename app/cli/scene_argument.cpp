@@ -6,6 +6,7 @@
 
 #include "cli/exit_code.h"
 #include "cli/option_values.h"
+#include "scene/camera_file.h"
 #include "scene/scene_io.h"
 
 namespace bounce {

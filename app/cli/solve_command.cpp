@@ -20,7 +20,7 @@
 #include "radiosity/progressive/reference_solver.h"
 #include "radiosity/solve.h"
 #include "radiosity/transfer/occlusion.h"
-#include "scene/ply.h"
+#include "mesh/ply.h"
 
 namespace bounce {
 namespace {

@@ -20,7 +20,7 @@
 #include "mesh/patch_mesh.h"
 #include "radiosity/solve.h"
 #include "scene/camera_math.h"
-#include "scene/obj_io.h"
+#include "scene/reader_support.h"
 #include "scene/scene_info.h"
 #include "trace/radiosity_field.h"
 #include "trace/ray_tracer.h"

@@ -9,7 +9,7 @@
 
 #include <imgui.h>
 
-#include "scene/scene_io.h"
+#include "scene/camera_file.h"
 
 namespace bounce {
 

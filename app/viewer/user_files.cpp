@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene_io.h"
+#include "scene/camera_file.h"
 
 namespace bounce {
 namespace {

@@ -17,6 +17,7 @@
 #include "mesh/a_priori_refinement.h"
 #include "mesh/coplanar_cut.h"
 #include "mesh/patch_mesh.h"
+#include "scene/framing.h"
 #include "scene/scene_info.h"
 #include "scene/tessellate.h"
 #include "scene/texture.h"

@@ -4,8 +4,8 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "scene/framing.h"
 #include "scene/scene.h"
-#include "scene/scene_io.h"
 
 namespace bounce {
 

@@ -21,7 +21,7 @@
 // is not defined here); the header only declares it.
 #include <tiny_gltf.h>
 
-#include "scene/scene_io.h"
+#include "scene/reader_support.h"
 
 namespace bounce {
 namespace {

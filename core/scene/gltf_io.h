@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/obj_io.h"  // load_error
+#include "scene/reader_support.h"  // load_error
 #include "scene/scene.h"
 
 namespace bounce {

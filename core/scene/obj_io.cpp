@@ -13,9 +13,7 @@
 #include <sstream>
 #include <string_view>
 
-#include <stb/stb_image.h>
-
-#include "scene/scene_io.h"
+#include "scene/reader_support.h"
 
 namespace bounce {
 namespace {
@@ -26,12 +24,6 @@ constexpr std::size_t max_obj_elements = 20'000'000;
 // Colour channels above this are not reflectances at all (0-255 colours?).
 constexpr double max_colour_channel = 2.0;
 constexpr const char* default_material_text = "the grey default material (rho 0.5)";
-
-std::string resolve(const std::string& base_file, const std::string& relative) {
-  std::filesystem::path rel(relative);
-  if (rel.is_absolute()) return relative;
-  return (std::filesystem::path(base_file).parent_path() / rel).lexically_normal().string();
-}
 
 // Splits a line into whitespace-separated tokens (views into `line`).
 std::vector<std::string_view> tokenize(std::string_view line) {
@@ -170,10 +162,6 @@ bool clamp_reflectance(rgb& c, const std::string& what, const std::string& where
       clamped = true;
     }
   return clamped;
-}
-
-double srgb_to_linear(double c) {
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
 // File names written on Windows: backslashes are separators.
@@ -650,29 +638,6 @@ void read_obj_statements(const std::string& path, const std::string_view text, s
 
 }  // namespace
 
-texture read_image_texture(const std::string& path, const std::string& name, const std::string& where) {
-  std::optional<std::string> bytes = read_file(path);
-  if (!bytes) throw load_error(where + ": cannot read texture '" + path + "'");
-  return decode_image_texture(*bytes, name, where, "texture '" + path + "'");
-}
-
-texture decode_image_texture(std::string_view bytes, const std::string& name, const std::string& where,
-                             const std::string& what) {
-  int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                static_cast<int>(bytes.size()), &w, &h, &channels, 3);
-  if (!pixels) throw load_error(where + ": cannot decode " + what + ": " + stbi_failure_reason());
-  texture t;
-  t.name = name;
-  t.kind = texture_kind::image;
-  t.width = w;
-  t.height = h;
-  t.texels.resize(static_cast<std::size_t>(w) * h * 3);
-  for (std::size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = static_cast<float>(srgb_to_linear(pixels[i] / 255.0));
-  stbi_image_free(pixels);
-  return t;
-}
-
 obj_read_result read_obj(const std::string& path, std::vector<material>& materials, std::vector<texture>& textures) {
   std::optional<std::string> bytes = read_file(path);
   if (!bytes) throw load_error(path + ": cannot read file");
@@ -685,17 +650,6 @@ obj_read_result read_obj(const std::string& path, std::vector<material>& materia
     e.warnings.insert(e.warnings.begin(), result.warnings.begin(), result.warnings.end());
     throw;
   }
-}
-
-std::string format_value(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
-std::string format_value(const rgb& c) {
-  return c.r == c.g && c.g == c.b ? format_value(c.r)
-                                  : format_value(c.r) + " " + format_value(c.g) + " " + format_value(c.b);
 }
 
 }  // namespace bounce

@@ -2,8 +2,8 @@
 // around a target, pan, zoom, fly, frame the scene. y is up.
 #pragma once
 
+#include "scene/framing.h"
 #include "scene/scene.h"
-#include "scene/scene_io.h"
 
 namespace bounce {
 

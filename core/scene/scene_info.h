@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <string>
 
+#include "scene/framing.h"
 #include "scene/scene.h"
-#include "scene/scene_io.h"
 
 namespace bounce {
 

@@ -1,8 +1,10 @@
 // Loading and validating scenes: JSON scene files, bare Wavefront OBJ/MTL,
-// and the Cornell box embedded in the binary.
+// glTF models, procedural scenes and the Cornell box embedded in the
+// binary. The readers (json_scene, obj_io, gltf_io) turn a file into a
+// scene; load_scene picks the reader, then drops degenerate faces, adds
+// back sides, validates and warns, so every scene it returns is valid.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,29 +32,5 @@ inline constexpr std::string_view generated_prefix = "generated:";
 // fitted to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills
 // report.error with a message naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
-
-// Reads a file's bytes, from disk or from the embedded files.
-std::optional<std::string> read_file(const std::string& path);
-
-// Camera files hold the scene format's camera object: {"camera": {"eye":
-// ..., "target": ..., "up": ..., "fov": ..., "size": [w, h]}}; keys left
-// out keep `cam`'s values. Errors name the file (`where`) and the key.
-bool load_camera_file(const std::string& path, camera& cam, std::string& error);
-bool parse_camera_text(const std::string& text, const std::string& where, camera& cam, std::string& error);
-
-// `cam` as a camera file (every key written; numbers round-trip exactly).
-std::string camera_json(const camera& cam);
-
-// A camera that frames the scene's bounding box, looking horizontally from
-// the side that shows the most front-facing area (y is up).
-camera fit_camera(const scene& s);
-
-// Axis-aligned bounds of every surface (curved ones by their control
-// points or boxes).
-struct bounds3 {
-  vec3 min{0.0};
-  vec3 max{0.0};
-};
-bounds3 scene_bounds(const scene& s);
 
 }  // namespace bounce

@@ -6,8 +6,6 @@
 #include <cstdio>
 #include <sstream>
 
-#include "scene/scene_io.h"
-
 namespace bounce {
 namespace {
 

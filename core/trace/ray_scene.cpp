@@ -12,8 +12,8 @@
 #include "base/embree_device.h"
 
 #include "mesh/coplanar_cut.h"
+#include "scene/framing.h"
 #include "scene/scene_info.h"
-#include "scene/scene_io.h"
 #include "scene/tessellate.h"
 
 namespace bounce {

@@ -17,7 +17,7 @@
 #include "image/image_metrics.h"
 #include "image/tonemap.h"
 #include "scene/camera_math.h"
-#include "scene/scene_io.h"
+#include "scene/framing.h"
 #include "scene/sky.h"
 #include "scene/texture.h"
 #include "trace/irradiance_cache.h"

@@ -14,6 +14,7 @@
 #include <imgui_internal.h>
 
 #include "mesh_builders.h"
+#include "scene/camera_file.h"
 #include "scene/scene_io.h"
 #include "test_files.h"
 #include "viewer/panel.h"

@@ -16,6 +16,7 @@
 #include "image/image.h"
 #include "image/image_metrics.h"
 #include "scene/camera_math.h"
+#include "scene/framing.h"
 #include "test_files.h"
 
 namespace bounce {

@@ -10,6 +10,7 @@
 #include "mesh/coplanar_cut.h"
 #include "mesh/patch_mesh.h"
 #include "scene/camera_math.h"
+#include "scene/framing.h"
 #include "scene/scene_info.h"
 #include "scene/scene_io.h"
 #include "test_files.h"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/camera_math.h"
+#include "scene/framing.h"
 
 namespace bounce {
 namespace {

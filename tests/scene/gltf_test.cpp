@@ -16,7 +16,7 @@
 #include "measure/closed_forms.h"
 #include "mesh_builders.h"
 #include "radiosity/solver.h"
-#include "scene/obj_io.h"
+#include "scene/reader_support.h"
 #include "scene/scene_io.h"
 #include "scene/texture.h"
 #include "test_files.h"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 
-#include "scene/obj_io.h"
+#include "scene/reader_support.h"
 #include "scene/scene_io.h"
 #include "test_files.h"
 

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "scene/framing.h"
 #include "scene/orbit.h"
 
 namespace bounce {

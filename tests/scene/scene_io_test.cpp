@@ -1,7 +1,7 @@
-// Scene loading: the shipped scenes, round trips of every construct, and
-// every kind of bad input (each must fail with a message that names the
-// file and the line or object).
-#include <cmath>
+// Scene loading: the shipped scenes, OBJ round trips, generated scenes,
+// and every kind of bad input (each must fail with a message that names
+// the file and the line or object). The JSON format's own cases are in
+// json_scene_test.cpp, the fitted camera's in framing_test.cpp.
 #include <fstream>
 #include <sstream>
 
@@ -149,20 +149,6 @@ TEST(SceneIo, EveryShippedSceneLoads) {
   }
 }
 
-TEST(SceneIo, BareObjGetsACameraLookingIntoTheOpenSide) {
-  scene s = load_ok(source_path("assets/cornell_box/cornell_box.obj"));
-  // The box is open towards -z: the fitted camera stands there, looking +z.
-  EXPECT_LT(s.view.eye.z, 0.0);
-  EXPECT_NEAR(s.view.eye.x, s.view.target.x, 1e-9);
-  EXPECT_GT(s.view.target.z, s.view.eye.z);
-  // And it sees the whole bounding sphere.
-  bounds3 b = scene_bounds(s);
-  double radius = 0.5 * glm::length(b.max - b.min);
-  double distance = glm::length(s.view.target - s.view.eye);
-  EXPECT_GE(std::asin(radius / distance), 0.0);
-  EXPECT_LE(std::asin(radius / distance), glm::radians(s.view.fov_y_degrees) * 0.5 + 1e-9);
-}
-
 TEST(SceneIo, ObjRoundTrip) {
   scratch_dir dir;
   dir.write("simple.mtl", simple_mtl);
@@ -254,60 +240,6 @@ Tr 0
   EXPECT_EQ(find("lamp").kt, rgb(0.0));
 }
 
-TEST(SceneIo, JsonRoundTripOfEveryShape) {
-  scratch_dir dir;
-  std::string points;
-  for (int i = 0; i < 16; ++i)
-    points += (i ? "," : "") + std::string("[") + std::to_string(i % 4) + "," + std::to_string(i / 4) + ",0]";
-  std::string path = dir.write("s.json",
-                               R"({
-  "camera": {"eye": [0, 1, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 30, "size": [320, 200]},
-  "background": [0.1, 0.2, 0.3],
-  "textures": {"checks": {"checker": {"color0": [1, 1, 1], "color1": [0.1, 0.1, 0.1], "scale": 4}}},
-  "materials": {
-    "floor": {"rho": [0.8, 0.7, 0.6], "texture": "checks"},
-    "glass": {"kt": [0.9, 0.9, 0.9], "kr": [0.1, 0.1, 0.1], "ior": 1.5, "fresnel": true, "specular": [1, 1, 1], "shininess": 80},
-    "lamp": {"ke": [2, 3, 4]}
-  },
-  "surfaces": [
-    {"name": "floor", "polygon": [[-1,0,-1],[-1,0,1],[1,0,1],[1,0,-1]], "uv": [[0,0],[0,1],[1,1],[1,0]], "material": "floor"},
-    {"sphere": {"center": [0, 1, 0], "radius": 0.5}, "material": "glass"},
-    {"quadric": {"a": 1, "c": 1, "k": -0.25, "box": [[-1, 0, -1], [1, 2, 1]]}, "material": "floor"},
-    {"bezier": {"points": [)" + points +
-                                   R"(], "patches": [[0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,15]]}, "material": "floor"},
-    {"bspline": {"rows": 4, "cols": 4, "points": [)" +
-                                   points + R"(]}, "material": "lamp"}
-  ],
-  "lights": [{"position": [0, 3, 0], "intensity": [5, 5, 5]}]
-})");
-  scene s = load_ok(path);
-  EXPECT_EQ(s.view.width, 320);
-  EXPECT_EQ(s.view.height, 200);
-  EXPECT_EQ(s.view.fov_y_degrees, 30.0);
-  EXPECT_EQ(s.background, rgb(0.1, 0.2, 0.3));
-  ASSERT_EQ(s.surfaces.size(), 5u);
-  EXPECT_EQ(s.surfaces[0].name, "floor");
-  EXPECT_EQ(s.surfaces[1].name, "surfaces[1]");
-  const auto& floor = std::get<polygon_mesh>(s.surfaces[0].geometry);
-  EXPECT_EQ(floor.uvs[2], vec2(1, 1));
-  EXPECT_EQ(s.materials[floor.faces[0].material].texture, 0);
-  EXPECT_EQ(s.textures[0].scale, 4.0);
-  const auto& ball = std::get<sphere>(s.surfaces[1].geometry);
-  EXPECT_EQ(ball.radius, 0.5);
-  EXPECT_TRUE(s.materials[ball.material].fresnel);
-  EXPECT_EQ(s.materials[ball.material].shininess, 80.0);
-  const auto& q = std::get<quadric>(s.surfaces[2].geometry);
-  EXPECT_EQ(q.a, 1.0);
-  EXPECT_EQ(q.b, 0.0);
-  EXPECT_EQ(q.k, -0.25);
-  EXPECT_EQ(q.box_max, vec3(1, 2, 1));
-  const auto& bez = std::get<bezier_surface>(s.surfaces[3].geometry);
-  EXPECT_EQ(bez.patches[0][7], vec3(3, 1, 0));
-  const auto& bs = std::get<bspline_surface>(s.surfaces[4].geometry);
-  EXPECT_EQ(bs.control[13], vec3(1, 3, 0));
-  EXPECT_EQ(s.lights[0].intensity, rgb(5.0));
-}
-
 TEST(SceneIo, GeneratedNameBuildsTheProceduralScene) {
   scene s;
   load_report report;
@@ -368,48 +300,6 @@ TEST(SceneIoBadInput, UnknownGeneratedNameIsNamed) {
   EXPECT_NE(e.find("unknown scene format"), std::string::npos) << e;
 }
 
-TEST(SceneIoBadInput, MalformedJsonNamesLineAndColumn) {
-  scratch_dir dir;
-  std::string path = dir.write("bad.json", "{\n  \"materials\": {\n    \"white\": {\"rho\": [0.5, 0.5 0.5]}\n}\n");
-  std::string e = load_error_of(path);
-  EXPECT_NE(e.find(path + ":3:"), std::string::npos) << e;
-  EXPECT_NE(e.find("invalid JSON"), std::string::npos) << e;
-}
-
-TEST(SceneIoBadInput, UnknownJsonKey) {
-  scratch_dir dir;
-  std::string path = dir.write(
-      "s.json", json_scene(R"({"sphere": {"center": [0,0,0], "radius": 1, "colour": 3}, "material": "white"})"));
-  std::string e = load_error_of(path);
-  EXPECT_NE(e.find("surfaces[0].sphere"), std::string::npos) << e;
-  EXPECT_NE(e.find("unknown key 'colour'"), std::string::npos) << e;
-}
-
-TEST(SceneIoBadInput, WrongJsonType) {
-  scratch_dir dir;
-  std::string path =
-      dir.write("s.json", json_scene(R"({"sphere": {"center": [0,0,0], "radius": "big"}, "material": "white"})"));
-  std::string e = load_error_of(path);
-  EXPECT_NE(e.find("surfaces[0].sphere.radius: must be a number"), std::string::npos) << e;
-}
-
-TEST(SceneIoBadInput, InfiniteJsonNumber) {
-  scratch_dir dir;
-  std::string path =
-      dir.write("s.json", json_scene(R"({"sphere": {"center": [0,1e999,0], "radius": 1}, "material": "white"})"));
-  std::string e = load_error_of(path);
-  EXPECT_NE(e.find(path), std::string::npos) << e;
-  EXPECT_TRUE(e.find("finite") != std::string::npos || e.find("invalid JSON") != std::string::npos) << e;
-}
-
-TEST(SceneIoBadInput, UnknownMaterialReference) {
-  scratch_dir dir;
-  std::string path =
-      dir.write("s.json", json_scene(R"({"sphere": {"center": [0,0,0], "radius": 1}, "material": "gold"})"));
-  std::string e = load_error_of(path);
-  EXPECT_NE(e.find("surfaces[0].material: no material named 'gold'"), std::string::npos) << e;
-}
-
 TEST(SceneIoBadInput, MissingObjAndMtlAndTexture) {
   scratch_dir dir;
   std::string e = load_error_of(dir.write("a.json", json_scene(R"({"obj": "nothere.obj"})")));
@@ -428,18 +318,6 @@ TEST(SceneIoBadInput, MissingObjAndMtlAndTexture) {
   dir.write("c.mtl", "newmtl t\nKd 0.5 0.5 0.5\nmap_Kd nothere.png\n");
   e = load_error_of(dir.write("c.obj", "mtllib c.mtl\n"));
   EXPECT_NE(e.find("c.mtl:3: cannot read texture"), std::string::npos) << e;
-}
-
-TEST(SceneIoBadInput, UndecodableTexture) {
-  scratch_dir dir;
-  dir.write("garbage.png", "this is not a png");
-  std::string path = dir.write("s.json", R"({"textures": {"t": {"image": "garbage.png"}},
-    "materials": {"m": {"rho": [0.5,0.5,0.5], "texture": "t"}},
-    "surfaces": [{"sphere": {"center": [0,0,0], "radius": 1}, "material": "m"}],
-    "lights": [{"position": [0,5,0], "intensity": [1,1,1]}]})");
-  std::string e = load_error_of(path);
-  EXPECT_NE(e.find("cannot decode texture"), std::string::npos) << e;
-  EXPECT_NE(e.find("textures.t"), std::string::npos) << e;
 }
 
 TEST(SceneIoBadInput, ObjNanAndMalformedNumbersNameTheLine) {
@@ -618,85 +496,7 @@ TEST(SceneIoBadInput, ValidateRefusesHugeEmissionBriefly) {
   EXPECT_EQ(validate_scene(s), "");
 }
 
-// ---- h3: numbers in JSON scenes, messages that name the place ----
-
-// Every number in a JSON scene is finite and at most max_file_number in
-// magnitude, so that intensities, emissions, backgrounds and sizes cannot
-// overflow (1e308 gave Inf and NaN pixels).
-TEST(SceneIoNumbers, HugeNumbersAreRefusedWithTheLimit) {
-  scratch_dir dir;
-  struct bad_case {
-    const char* name;
-    std::string json;
-    const char* where;
-  } cases[] = {
-      {"light.json",
-       R"({"surfaces": [{"sphere": {"center": [0,0,0], "radius": 1}, "material": "m"}],
-           "materials": {"m": {"rho": [0.5,0.5,0.5]}},
-           "lights": [{"position": [0,5,0], "intensity": [1e308, 1, 1]}]})",
-       "lights[0].intensity[0]"},
-      {"background.json",
-       json_scene(R"({"sphere": {"center": [0,0,0], "radius": 1}, "material": "white"})",
-                  R"(, "background": [0, 1e308, 0])"),
-       "background[1]"},
-      {"radius.json", json_scene(R"({"sphere": {"center": [0,0,0], "radius": 2e9}, "material": "white"})"),
-       "surfaces[0].sphere.radius"},
-      {"vertex.json", json_scene(R"({"polygon": [[0,0,0],[-5e9,0,0],[0,1,0]], "material": "white"})"),
-       "surfaces[0].polygon[1][0]"},
-  };
-  for (const bad_case& c : cases) {
-    const std::string path = dir.write(c.name, c.json);
-    const std::string e = load_error_of(path);
-    EXPECT_NE(e.find(path + ": " + c.where + ": "), std::string::npos) << e;
-    EXPECT_NE(e.find("out of range (limit 1e+09 in magnitude)"), std::string::npos) << e;
-  }
-  // At the limit is fine.
-  load_ok(dir.write("ok.json", json_scene(R"({"sphere": {"center": [0,0,0], "radius": 1}, "material": "white"})",
-                                          R"(, "background": [1e9, 0, 0])")));
-}
-
-// A literal beyond a double: file:line:column and what it is, not the JSON
-// library's exception text.
-TEST(SceneIoNumbers, OverflowingLiteralNamesLineAndColumn) {
-  scratch_dir dir;
-  const std::string path =
-      dir.write("a.json",
-                "{\n  \"materials\": {\"w\": {\"rho\": [0.5, 0.5, 0.5]}},\n  \"surfaces\": [{\"sphere\": "
-                "{\"center\": [0, \"1e999\", 0], \"radius\": -1e400}, \"material\": \"w\"}]\n}\n");
-  const std::string e = load_error_of(path);
-  // Line 3; the string "1e999" before it is not a number.
-  const std::string line3 = "  \"surfaces\": [{\"sphere\": {\"center\": [0, \"1e999\", 0], \"radius\": ";
-  EXPECT_NE(e.find(path + ":3:" + std::to_string(line3.size() + 1) + ": number out of range: -1e400"),
-            std::string::npos)
-      << e;
-  EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
-}
-
-// A missing OBJ names the scene file and the surface that refers to it.
-TEST(SceneIoNumbers, MissingObjNamesSceneAndSurface) {
-  scratch_dir dir;
-  const std::string path = dir.write(
-      "a.json",
-      json_scene(R"({"sphere": {"center": [0,0,0], "radius": 1}, "material": "white"}, {"obj": "gone.obj"})"));
-  const std::string e = load_error_of(path);
-  EXPECT_NE(e.find(path + ": surfaces[1].obj: "), std::string::npos) << e;
-  EXPECT_NE(e.find("gone.obj"), std::string::npos) << e;
-}
-
-// Warnings said before a failure are kept for the caller to print first.
-TEST(SceneIoNumbers, WarningsBeforeAFailureAreKept) {
-  scratch_dir dir;
-  dir.write("m.mtl", "newmtl e\nKe 1 1 1\nKa 0 0 0\n");
-  dir.write("w.obj", "mtllib m.mtl\nusemtl e\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string path = dir.write(
-      "a.json", json_scene(R"({"obj": "w.obj"}, {"polygon": [[0,0,0],[1,0,0],[0,1,0]], "material": "nope"})"));
-  scene s;
-  load_report report;
-  ASSERT_FALSE(load_scene(path, s, report));
-  EXPECT_NE(report.error.find("no material named 'nope'"), std::string::npos) << report.error;
-  ASSERT_FALSE(report.warnings.empty());
-  EXPECT_NE(report.warnings[0].find("'Ka' is not used"), std::string::npos) << report.warnings[0];
-}
+// ---- h3: messages that name the place ----
 
 // An emitter whose light reaches nothing (it faces away from everything)
 // loads, with a warning naming it; turned round, no warning.

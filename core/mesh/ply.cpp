@@ -1,4 +1,4 @@
-#include "scene/ply.h"
+#include "mesh/ply.h"
 
 #include <cstdio>
 #include <fstream>

@@ -1,0 +1,80 @@
+#include "scene/reader_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <stb/stb_image.h>
+
+#include "base/embedded.h"
+
+namespace bounce {
+namespace {
+
+constexpr std::string_view embedded_prefix = "embedded:";
+
+double srgb_to_linear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+}  // namespace
+
+std::optional<std::string> read_file(const std::string& path) {
+  if (path.rfind(embedded_prefix, 0) == 0) {
+    std::string_view name = std::string_view(path).substr(embedded_prefix.size());
+    for (const embedded_file& f : embedded_files())
+      if (f.path == name) return std::string(f.contents);
+    return std::nullopt;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+std::string resolve(const std::string& base_file, const std::string& relative) {
+  std::filesystem::path rel(relative);
+  if (rel.is_absolute()) return relative;
+  return (std::filesystem::path(base_file).parent_path() / rel).lexically_normal().string();
+}
+
+texture read_image_texture(const std::string& path, const std::string& name, const std::string& where) {
+  std::optional<std::string> bytes = read_file(path);
+  if (!bytes) throw load_error(where + ": cannot read texture '" + path + "'");
+  return decode_image_texture(*bytes, name, where, "texture '" + path + "'");
+}
+
+texture decode_image_texture(std::string_view bytes, const std::string& name, const std::string& where,
+                             const std::string& what) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                static_cast<int>(bytes.size()), &w, &h, &channels, 3);
+  if (!pixels) throw load_error(where + ": cannot decode " + what + ": " + stbi_failure_reason());
+  texture t;
+  t.name = name;
+  t.kind = texture_kind::image;
+  t.width = w;
+  t.height = h;
+  t.texels.resize(static_cast<std::size_t>(w) * h * 3);
+  for (std::size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = static_cast<float>(srgb_to_linear(pixels[i] / 255.0));
+  stbi_image_free(pixels);
+  return t;
+}
+
+std::string format_value(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+std::string format_value(const rgb& c) {
+  return c.r == c.g && c.g == c.b ? format_value(c.r)
+                                  : format_value(c.r) + " " + format_value(c.g) + " " + format_value(c.b);
+}
+
+}  // namespace bounce
