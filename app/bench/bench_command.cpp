@@ -25,7 +25,7 @@
 #include "bench/bench_references.h"
 #include "bench/bench_report.h"
 #include "bench/bench_suites.h"
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "measure/bench.h"
 #include "scene/procedural.h"
 #include "scene/scene_io.h"

@@ -12,7 +12,7 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "measure/ray_throughput.h"
 #include "scene/procedural.h"
 #include "scene/scene_io.h"

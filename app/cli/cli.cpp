@@ -14,7 +14,7 @@
 #include "bench/bench_command.h"
 #include "cli/compare_command.h"
 #include "cli/console.h"
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "cli/info_command.h"
 #include "cli/render_command.h"
 #include "cli/scene_argument.h"

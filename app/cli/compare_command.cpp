@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "image/image.h"
 #include "image/image_metrics.h"

@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "scene/scene_info.h"

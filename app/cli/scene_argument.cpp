@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "scene/camera_file.h"
 #include "scene/scene_io.h"

@@ -11,7 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/console.h"
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"

@@ -16,7 +16,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "cli/exit_code.h"
+#include "common/exit_code.h"
 #include "image/image.h"
 #include "render/mesh_renderer.h"
 #include "scene/camera_file.h"
