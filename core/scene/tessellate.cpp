@@ -875,8 +875,8 @@ triangle_mesh triangulate(const polygon_mesh& mesh, std::size_t* dropped) {
 }
 
 triangle_mesh tessellate(const sphere& s, double max_edge) {
-  assert(max_edge > 0.0);
-  assert(s.radius > 0.0);
+  BOUNCE_CHECK_GT(max_edge, 0.0);
+  BOUNCE_CHECK_GT(s.radius, 0.0);
   const sphere_grid g = sphere_resolution(s, max_edge);
   triangle_mesh m;
   // Polar axis y, from the south pole (v = 0) to the north pole (v = 1).
@@ -903,14 +903,14 @@ triangle_mesh tessellate(const sphere& s, double max_edge) {
 }
 
 triangle_mesh tessellate(const quadric& q, double max_edge) {
-  assert(max_edge > 0.0);
+  BOUNCE_CHECK_GT(max_edge, 0.0);
   quadric_mesher mesher(q);
   march_quadric(q, quadric_grid_for(q, max_edge), mesher);
   return mesher.take();
 }
 
 triangle_mesh tessellate(const bezier_surface& b, double max_edge) {
-  assert(max_edge > 0.0);
+  BOUNCE_CHECK_GT(max_edge, 0.0);
   triangle_mesh m;
   std::vector<int> border;
   for (const std::array<vec3, 16>& patch : b.patches) {
@@ -928,7 +928,7 @@ triangle_mesh tessellate(const bezier_surface& b, double max_edge) {
 }
 
 triangle_mesh tessellate(const bspline_surface& b, double max_edge) {
-  assert(max_edge > 0.0);
+  BOUNCE_CHECK_GT(max_edge, 0.0);
   const std::vector<double> us = bspline_lines(b, true, max_edge), vs = bspline_lines(b, false, max_edge);
   const vec2 spans(b.cols - 3, b.rows - 3);
   triangle_mesh m;
@@ -942,7 +942,7 @@ triangle_mesh tessellate(const bspline_surface& b, double max_edge) {
 }
 
 triangle_mesh tessellate(const surface& s, double max_edge, std::size_t* dropped) {
-  assert(max_edge > 0.0);
+  BOUNCE_CHECK_GT(max_edge, 0.0);
   if (dropped) *dropped = 0;
   return std::visit(
       [&](const auto& g) -> triangle_mesh {
@@ -955,7 +955,7 @@ triangle_mesh tessellate(const surface& s, double max_edge, std::size_t* dropped
 }
 
 std::size_t estimate_triangles(const surface& s, double max_edge) {
-  assert(max_edge > 0.0);
+  BOUNCE_CHECK_GT(max_edge, 0.0);
   const auto count = [&](const auto& g) -> double {
     using T = std::decay_t<decltype(g)>;
     if constexpr (std::is_same_v<T, polygon_mesh>) {
