@@ -563,8 +563,7 @@ void check_mesh_contract(const patch_mesh& mesh) {
 }
 
 vec3 barycentric(const patch_mesh& mesh, int element, const vec3& point) {
-  const glm::ivec3 t = mesh.elements[element];
-  const vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+  const auto [a, b, c] = element_corners(mesh, std::size_t(element));
   const vec3 n = glm::cross(b - a, c - a);
   const double inv = 1.0 / glm::dot(n, n);
   const double wa = glm::dot(glm::cross(c - b, point - b), n) * inv;

@@ -86,8 +86,7 @@ bool closest_element(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<query*>(args->userPtr);
   if (args->geomID != q->geometry) return false;
   const int e = q->element_of[args->geomID][args->primID];
-  const glm::ivec3 t = q->mesh->elements[e];
-  const vec3 a = q->mesh->positions[t[0]], b = q->mesh->positions[t[1]], c = q->mesh->positions[t[2]];
+  const auto [a, b, c] = element_corners(*q->mesh, std::size_t(e));
   const vec3 w = closest_barycentric(q->point, a, b, c);
   const vec3 closest = w.x * a + w.y * b + w.z * c;
   const double d2 = glm::dot(closest - q->point, closest - q->point);

@@ -223,9 +223,8 @@ std::uint64_t shoot(const form_factor_context& context, const shooter& from, std
 
 std::uint64_t form_factors_to_element(const form_factor_context& context, int element, std::span<double> out) {
   const patch_mesh& mesh = *context.mesh;
-  const glm::ivec3 t = mesh.elements[element];
   shooter from;
-  from.corners = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+  from.corners = element_corners(mesh, std::size_t(element));
   from.normal = mesh.element_normals[element];
   from.area = mesh.element_areas[element];
   from.element = element;

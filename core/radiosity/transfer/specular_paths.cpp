@@ -6,9 +6,9 @@
 
 #include "base/parallel.h"
 #include "base/random_stream.h"
+#include "optics/specular_event.h"
 #include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/occlusion.h"
-#include "optics/specular_event.h"
 
 namespace bounce {
 namespace {
@@ -179,8 +179,7 @@ std::uint64_t send_paths(const scene& s, const form_factor_context& context, con
   double largest = 0.0;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const int e = targets[i];
-    const glm::ivec3 t = mesh.elements[std::size_t(e)];
-    const vec3 corners[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+    const std::array<vec3, 3> corners = element_corners(mesh, std::size_t(e));
     const vec3 c = (corners[0] + corners[1] + corners[2]) / 3.0;
     vec3 n = mesh.element_normals[std::size_t(e)];
     if (glm::dot(n, centre - c) < 0.0) n = -n;  // glass and mirrors take light on either side
