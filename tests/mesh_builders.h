@@ -63,12 +63,39 @@ inline patch_mesh mesh_of(const scene& s, double max_edge) {
   return mesh;
 }
 
-// The embedded Cornell box, as every command loads it without a scene.
-inline scene default_cornell_box() {
+// The same with shooting patches of `patch_edge` and, when above 0,
+// adaptive meshing's a priori pass down to `a_priori_min_edge`.
+inline patch_mesh mesh_of(const scene& s, double max_edge, double patch_edge, double a_priori_min_edge = 0.0) {
+  mesher_params params;
+  params.max_edge = max_edge;
+  params.patch_edge = patch_edge;
+  params.a_priori_min_edge = a_priori_min_edge;
+  patch_mesh mesh;
+  std::string error;
+  EXPECT_TRUE(make_patch_mesh(s, params, mesh, error)) << error;
+  return mesh;
+}
+
+// A scene that must load (the test fails, naming the error, if not).
+inline scene load_ok(const std::string& path) {
   scene s;
   load_report report;
-  EXPECT_TRUE(load_scene(default_scene_path, s, report)) << report.error;
+  EXPECT_TRUE(load_scene(path, s, report)) << report.error;
   return s;
+}
+
+// Loads a scene that must fail and returns the message.
+inline std::string load_error_of(const std::string& path) {
+  scene s;
+  load_report report;
+  EXPECT_FALSE(load_scene(path, s, report)) << "loading " << path << " should fail";
+  EXPECT_FALSE(report.error.empty());
+  return report.error;
+}
+
+// The embedded Cornell box, as every command loads it without a scene.
+inline scene default_cornell_box() {
+  return load_ok(default_scene_path);
 }
 
 }  // namespace bounce::test_support

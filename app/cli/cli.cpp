@@ -14,13 +14,13 @@
 #include "bench/bench_command.h"
 #include "cli/compare_command.h"
 #include "cli/console.h"
-#include "common/exit_code.h"
 #include "cli/info_command.h"
 #include "cli/render_command.h"
 #include "cli/scene_argument.h"
 #include "cli/solve_command.h"
 #include "cli/trace_command.h"
 #include "cli/view_command.h"
+#include "common/exit_code.h"
 
 namespace bounce {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/exit_code.h"
 #include "cli/option_values.h"
+#include "common/exit_code.h"
 #include "image/image.h"
 #include "image/image_metrics.h"
 

@@ -7,9 +7,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
+#include "common/exit_code.h"
 #include "scene/scene_info.h"
 #include "trace/back_faces.h"
 

@@ -10,11 +10,11 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/console.h"
-#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
 #include "cli/solver_stats.h"
+#include "common/exit_code.h"
 #include "headless/offscreen_view.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
@@ -101,11 +101,8 @@ int run_render(const render_options& options) {
 int render_scene(const scene& s, const render_options& options) {
   const solver_settings& solver = options.solver;
   solve_setup setup;
+  if (!start_command_solve(s, solver, setup)) return exit_input_error;
   std::string error;
-  if (!start_solve(s, solver, setup, error)) {
-    std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
-    return exit_input_error;
-  }
   const patch_mesh& mesh = *setup.mesh;
   radiosity_solver& run = *setup.solver;
   warn_about_mesh(s, mesh);

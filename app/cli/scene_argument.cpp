@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/exit_code.h"
 #include "cli/option_values.h"
+#include "common/exit_code.h"
 #include "scene/camera_file.h"
 #include "scene/scene_io.h"
 

@@ -10,17 +10,17 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/console.h"
-#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
 #include "cli/solver_stats.h"
+#include "common/exit_code.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/ply.h"
 #include "radiosity/progressive/reference_solver.h"
 #include "radiosity/solve.h"
 #include "radiosity/transfer/occlusion.h"
-#include "mesh/ply.h"
 
 namespace bounce {
 namespace {
@@ -31,11 +31,8 @@ using clock_type = std::chrono::steady_clock;
 int solve_scene(const scene& s, const solve_options& options) {
   const solver_settings& solver = options.solver;
   solve_setup setup;
+  if (!start_command_solve(s, solver, setup)) return exit_input_error;
   std::string error;
-  if (!start_solve(s, solver, setup, error)) {
-    std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
-    return exit_input_error;
-  }
   const patch_mesh& mesh = *setup.mesh;
   const refinement_pass& a_priori = setup.a_priori;
   say("mesh: %zu elements, %zu vertices, %zu shooting patches (max edge %g) in %.3f s\n", mesh.element_count(),

@@ -86,6 +86,13 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
   return out;
 }
 
+bool start_command_solve(const scene& s, const solver_settings& settings, solve_setup& out) {
+  std::string error;
+  if (start_solve(s, settings, out, error)) return true;
+  std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
+  return false;
+}
+
 void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
   if (mesh.nonmanifold_faces)
     std::fprintf(stderr, "warning: %s: %zu non-manifold face(s) kept with vertices of their own\n", s.source.c_str(),

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/patch_mesh.h"
+#include "radiosity/solve.h"
 #include "radiosity/solver.h"
 #include "radiosity/solver_settings.h"
 #include "scene/scene.h"
@@ -18,6 +19,10 @@ namespace bounce {
 // `meshed` is the mesh as the mesher built it (the solver's may be refined).
 nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings, const patch_mesh& meshed,
                                  const radiosity_solver& solver, double mesh_seconds);
+
+// start_solve for a command: when the scene cannot be meshed, prints the
+// error naming the scene on standard error and returns false.
+bool start_command_solve(const scene& s, const solver_settings& settings, solve_setup& out);
 
 // Warns on standard error about what the mesher had to leave imperfect
 // (non-manifold faces, coplanar overlaps it could not cut).

@@ -11,11 +11,11 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/console.h"
-#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
 #include "cli/solver_stats.h"
+#include "common/exit_code.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/solve.h"
@@ -39,11 +39,7 @@ struct solved {
 // Meshes and runs the solver to the options' criterion.
 bool solve(const scene& s, const solver_settings& solver, solved& out) {
   out.settings = solver;
-  std::string error;
-  if (!start_solve(s, solver, out.setup, error)) {
-    std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
-    return false;
-  }
+  if (!start_command_solve(s, solver, out.setup)) return false;
   warn_about_mesh(s, *out.setup.mesh);
   progress_line progress("solving");
   const solver_method method = method_of(*out.setup.solver);

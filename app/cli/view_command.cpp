@@ -2,10 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/exit_code.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
+#include "common/exit_code.h"
 
 namespace bounce {
 

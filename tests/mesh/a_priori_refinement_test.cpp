@@ -23,24 +23,8 @@ using test_support::add_polygon;
 using test_support::area_by_surface;
 using test_support::furnace;
 using test_support::hanging_vertices;
-
-scene load(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(path, s, report)) << report.error;
-  return s;
-}
-
-patch_mesh mesh_of(const scene& s, double max_edge, double patch_edge, double a_priori_min_edge = 0.0) {
-  mesher_params params;
-  params.max_edge = max_edge;
-  params.patch_edge = patch_edge;
-  params.a_priori_min_edge = a_priori_min_edge;
-  patch_mesh mesh;
-  std::string error;
-  EXPECT_TRUE(make_patch_mesh(s, params, mesh, error)) << error;
-  return mesh;
-}
+using test_support::load_ok;
+using test_support::mesh_of;
 
 TEST(Adaptive, TheConformityCheckSeesAHangingVertex) {
   // Two triangles of a square; one is split at the diagonal's midpoint and
@@ -58,7 +42,7 @@ TEST(Adaptive, TheConformityCheckSeesAHangingVertex) {
 }
 
 TEST(Adaptive, BisectionKeepsTheMeshConformingAndItsArea) {
-  const scene s = load(default_scene_path);
+  const scene s = load_ok(default_scene_path);
   patch_mesh mesh = mesh_of(s, 120.0, 480.0);
   const auto area = area_by_surface(mesh);
   const std::size_t patches = mesh.patch_count();
@@ -91,7 +75,7 @@ TEST(Adaptive, BisectionKeepsTheMeshConformingAndItsArea) {
 }
 
 TEST(Adaptive, RepeatedBisectionInOneCallStaysConformingAndLeavesOtherSurfacesAlone) {
-  const scene s = load(default_scene_path);
+  const scene s = load_ok(default_scene_path);
   const patch_mesh before = mesh_of(s, 120.0, 480.0);
   patch_mesh mesh = before;
   const std::vector<int> marked = {0, int(before.element_count() / 2)};
@@ -131,7 +115,7 @@ TEST(Adaptive, RepeatedBisectionInOneCallStaysConformingAndLeavesOtherSurfacesAl
 TEST(Adaptive, APrioriMarksContactsAndElementsNearEmitters) {
   // Cornell box: contacts are the blocks' feet only (the floor and the
   // blocks), never the walls, whose boundaries meet the floor's.
-  const scene cornell = load(default_scene_path);
+  const scene cornell = load_ok(default_scene_path);
   const patch_mesh mesh = mesh_of(cornell, 100.0, 400.0);
   const std::vector<int> contacts = contact_marks(mesh, 10.0);
   ASSERT_FALSE(contacts.empty());

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh_builders.h"
 #include "scene/framing.h"
 #include "scene/scene_io.h"
 #include "test_files.h"
@@ -12,14 +13,9 @@
 namespace bounce {
 namespace {
 
-using test_support::source_path;
+using test_support::load_ok;
 
-scene load_ok(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(path, s, report)) << report.error;
-  return s;
-}
+using test_support::source_path;
 
 TEST(Framing, BareObjGetsACameraLookingIntoTheOpenSide) {
   scene s = load_ok(source_path("assets/cornell_box/cornell_box.obj"));

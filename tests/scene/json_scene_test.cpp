@@ -6,29 +6,16 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh_builders.h"
 #include "scene/scene_io.h"
 #include "test_files.h"
 
 namespace bounce {
 namespace {
 
+using test_support::load_error_of;
+using test_support::load_ok;
 using test_support::scratch_dir;
-
-scene load_ok(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(path, s, report)) << report.error;
-  return s;
-}
-
-// Loads a scene that must fail and returns the message.
-std::string load_error_of(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_FALSE(load_scene(path, s, report)) << "loading " << path << " should fail";
-  EXPECT_FALSE(report.error.empty());
-  return report.error;
-}
 
 // A JSON scene around one surface entry, with a light so it is valid.
 std::string json_scene(const std::string& surface_json, const std::string& extra = "") {

@@ -9,6 +9,7 @@
 #include <stb/stb_image_write.h>
 
 #include "base/embedded.h"
+#include "mesh_builders.h"
 #include "scene/procedural.h"
 #include "scene/scene_info.h"
 #include "scene/scene_io.h"
@@ -18,6 +19,8 @@
 namespace bounce {
 namespace {
 
+using test_support::load_error_of;
+using test_support::load_ok;
 using test_support::scratch_dir;
 using test_support::source_path;
 
@@ -43,22 +46,6 @@ o light
 usemtl light
 f 5 6 7
 )";
-
-scene load_ok(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(path, s, report)) << report.error;
-  return s;
-}
-
-// Loads a scene that must fail and returns the message.
-std::string load_error_of(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_FALSE(load_scene(path, s, report)) << "loading " << path << " should fail";
-  EXPECT_FALSE(report.error.empty());
-  return report.error;
-}
 
 const polygon_mesh& mesh_of(const scene& s, const std::string& name) {
   for (const surface& surf : s.surfaces)

@@ -18,16 +18,7 @@ namespace bounce {
 namespace {
 
 using std::numbers::pi;
-using test_support::add_material;
-using test_support::add_polygon;
-using test_support::cornell;
-using test_support::furnace;
-using test_support::hierarchical;
-using test_support::largest_relative_difference;
-using test_support::mesh_of;
-using test_support::near_short_block;
-using test_support::solve;
-using test_support::splitting;
+using namespace test_support;  // the fixtures: hierarchical(), solve(), cornell(), ...
 
 TEST(Hierarchical, LinksConcentrateAtContactsAndShadows) {
   const scene s = cornell();

@@ -27,24 +27,8 @@ using test_support::add_polygon;
 using test_support::area_by_surface;
 using test_support::furnace;
 using test_support::hanging_vertices;
-
-scene load(const std::string& path) {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene(path, s, report)) << report.error;
-  return s;
-}
-
-patch_mesh mesh_of(const scene& s, double max_edge, double patch_edge, double a_priori_min_edge = 0.0) {
-  mesher_params params;
-  params.max_edge = max_edge;
-  params.patch_edge = patch_edge;
-  params.a_priori_min_edge = a_priori_min_edge;
-  patch_mesh mesh;
-  std::string error;
-  EXPECT_TRUE(make_patch_mesh(s, params, mesh, error)) << error;
-  return mesh;
-}
+using test_support::load_ok;
+using test_support::mesh_of;
 
 // Shoots until the point lights have shot and the unshot fraction is at
 // most `fraction`, or nothing is left.
@@ -61,7 +45,7 @@ progressive_params adaptive(double tolerance) {
 }
 
 TEST(Adaptive, SolvedCornellMeshIsConformingWithItsAreaKept) {
-  const scene s = load(default_scene_path);
+  const scene s = load_ok(default_scene_path);
   const patch_mesh mesh = mesh_of(s, 150.0, 600.0, default_min_edge(150.0));
   auto state = make_progressive_state(s, mesh, adaptive(0.15));
   run_until(*state, 0.01);
@@ -182,7 +166,7 @@ TEST(Adaptive, UniformLightWithoutShadowsDoesNotRefine) {
 }
 
 TEST(Adaptive, RefinementConcentratesAlongTheBlocksShadowEdges) {
-  const scene s = load(default_scene_path);
+  const scene s = load_ok(default_scene_path);
   const patch_mesh mesh = mesh_of(s, 100.0, 0.0, default_min_edge(100.0));  // as --adaptive: elements shoot
   auto state = make_progressive_state(s, mesh, adaptive(0.5));
   run_until(*state, 0.01);
@@ -239,7 +223,7 @@ TEST(Adaptive, RefinementConcentratesAlongTheBlocksShadowEdges) {
 }
 
 TEST(Adaptive, SnapshotsBelongToTheRefinedMesh) {
-  const scene s = load(default_scene_path);
+  const scene s = load_ok(default_scene_path);
   const patch_mesh mesh = mesh_of(s, 150.0, 600.0);
   radiosity_params params;
   params.adaptive = adaptive(0.15).adaptive;
