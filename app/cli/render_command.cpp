@@ -49,10 +49,10 @@ void add_render_options(CLI::App& command, render_options& options) {
   command.add_option("--pfm", options.pfm_path, "also write the view in linear radiance to this PFM");
   CLI::Option* frames = command.add_option(
       "--frames", options.frames_dir,
-      "also write PNG frames of the convergence into DIR: after 1, 2, 4, 8, ... shots and at the end");
+      "also write PNG frames of the convergence into DIR: after 1, 2, 4, 8, ... steps and at the end");
   command
       .add_option("--frame-every", options.frame_every,
-                  "with --frames: a frame every N shots instead of at doubling counts")
+                  "with --frames: a frame every N steps instead of at doubling counts")
       ->check(CLI::Range(1L, 1L << 40))
       ->needs(frames);
   command.add_option("--exposure", options.exposure, "displayed value = radiance x exposure")

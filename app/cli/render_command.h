@@ -21,7 +21,7 @@ struct render_options {
   std::string out_path = "bounce.png";  // --out: the extension picks the format
   std::string pfm_path;                 // --pfm: also linear radiance
   std::string frames_dir;               // --frames: PNGs of the convergence
-  long frame_every = 0;                 // shots between frames; 0: after 1, 2, 4, 8, ... shots
+  long frame_every = 0;                 // steps between frames; 0: after 1, 2, 4, 8, ... steps
   double exposure = 1.0;
   std::string curve = "srgb";  // srgb | filmic
   bool wireframe = false;

@@ -22,7 +22,7 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"F", "frame the scene"},
       {"C", "restore the scene's camera"},
       {"Space", "pause / resume the solver"},
-      {"N", "one shot (hierarchical: one step)"},
+      {"N", "one step (progressive: one shot)"},
       {"R", "restart the solver"},
       {"G", "element wireframe"},
       {"P", "screenshot"},
