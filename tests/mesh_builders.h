@@ -77,6 +77,16 @@ inline patch_mesh mesh_of(const scene& s, double max_edge, double patch_edge, do
 }
 
 // A scene that must load (the test fails, naming the error, if not).
+// A JSON scene around one surface entry, with a light so it is valid.
+inline std::string json_scene(const std::string& surface_json, const std::string& extra = "") {
+  return R"({
+  "materials": {"white": {"rho": [0.5, 0.5, 0.5]}},
+  "surfaces": [)" +
+         surface_json + R"(],
+  "lights": [{"position": [0, 5, 0], "intensity": [1, 1, 1]}])" +
+         extra + "\n}\n";
+}
+
 inline scene load_ok(const std::string& path) {
   scene s;
   load_report report;

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -36,6 +37,12 @@ struct scratch_dir {
   }
   std::string path(const std::string& name) const { return (root / name).string(); }
 };
+
+// A whole file's text ("" when it cannot be read).
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 inline std::string source_path(const std::string& relative) {
   return std::string(BOUNCE_SOURCE_DIR) + "/" + relative;

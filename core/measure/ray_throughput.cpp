@@ -8,6 +8,7 @@
 #include <optional>
 #include <random>
 
+#include "base/directions.h"
 #include "base/parallel.h"
 #include "scene/camera_math.h"
 
@@ -79,12 +80,8 @@ ray_batch bounce_rays(const ray_scene& rays, const ray_batch& primary, std::uint
     const bool front = glm::dot(d, hit->face_normal) < 0.0;
     const vec3 n_face = front ? hit->face_normal : -hit->face_normal;
     const vec3 n = front ? hit->normal : -hit->normal;
-    // Cosine-distributed about n (Duff et al. 2017's basis).
-    const double sign = std::copysign(1.0, n.z), a = -1.0 / (sign + n.z), c = n.x * n.y * a;
-    const vec3 t(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x), s(c, sign + n.y * n.y * a, -n.y);
     const double u1 = uniform(rng), u2 = uniform(rng);
-    const double r = std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
-    vec3 dir = glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
+    vec3 dir = cosine_direction(n, u1, u2);
     if (glm::dot(dir, n_face) <= 0.0) dir = glm::reflect(dir, n_face);  // below the true surface: mirrored back up
     add_ray(b, hit->point + rays.surface_offset() * n_face, dir, 0.0);
   }

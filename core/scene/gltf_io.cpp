@@ -31,7 +31,6 @@ namespace {
 constexpr std::size_t max_accessor_elements = 20'000'000;
 // Deeper node trees are a cycle-like mistake (and recursion has limits).
 constexpr int max_node_depth = 1000;
-constexpr double max_colour_channel = 2.0;  // as the OBJ reader: above, not a reflectance
 
 std::string indexed(const char* list, std::size_t i) {
   return std::string(list) + "[" + std::to_string(i) + "]";

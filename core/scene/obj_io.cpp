@@ -21,8 +21,6 @@ namespace {
 // Largest counts a text file may declare; past these the input is absurd for
 // a radiosity scene and would only exhaust memory.
 constexpr std::size_t max_obj_elements = 20'000'000;
-// Colour channels above this are not reflectances at all (0-255 colours?).
-constexpr double max_colour_channel = 2.0;
 constexpr const char* default_material_text = "the grey default material (rho 0.5)";
 
 // Splits a line into whitespace-separated tokens (views into `line`).

@@ -18,7 +18,7 @@
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // A number in [0, 1) that depends only on its arguments.
 double hash01(std::uint64_t a, std::uint64_t b, std::uint64_t c = 0, std::uint64_t d = 0) {

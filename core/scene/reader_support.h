@@ -36,6 +36,9 @@ inline constexpr std::size_t max_face_corners = 10'000;
 // Reflectances of 1 or more (Kd 1 1 1, vertex colours of 1) become this,
 // as Valve's VRAD does; rho + kr + kt over 1 is scaled down to it.
 inline constexpr double max_reflectance = 0.99;
+// Colour channels above this are not reflectances at all (0-255 colours?)
+// and are refused.
+inline constexpr double max_colour_channel = 2.0;
 
 // Reads a file's bytes, from disk or, for paths starting with "embedded:",
 // from the files compiled into the binary (base/embedded.h). Nothing when

@@ -27,7 +27,7 @@
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Sanity caps on resolution. They bound the work for absurd max_edge values
 // (callers refuse those through estimate_triangles) and keep vertex indices

@@ -6,12 +6,13 @@
 #include <numbers>
 #include <vector>
 
+#include "base/directions.h"
 #include "base/random_stream.h"
 
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // A jitter in [0, 1) from a seed and a cell.
 double jitter(std::uint64_t seed, std::uint64_t k) {
@@ -67,11 +68,8 @@ int gather_irradiance(const vec3& position, const vec3& normal, int rays, std::u
                       irradiance_record& out) {
   const int m = std::max(1, int(std::lround(std::sqrt(std::max(1, rays) / pi)))),
             n = std::max(1, int(std::lround(double(std::max(1, rays)) / m)));
-  // Orthonormal basis around the normal (Duff et al. 2017).
-  const double sign = std::copysign(1.0, normal.z);
-  const double a = -1.0 / (sign + normal.z), c = normal.x * normal.y * a;
-  const vec3 t(1.0 + sign * normal.x * normal.x * a, sign * c, -sign * normal.x),
-      b(c, sign + normal.y * normal.y * a, -normal.y);
+  vec3 t, b;
+  orthonormal_basis(normal, t, b);
   rgb sum(0.0);
   double inverse_distances = 0.0;
   std::array<vec3, 3> rotation{vec3(0.0), vec3(0.0), vec3(0.0)};

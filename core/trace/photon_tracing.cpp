@@ -9,31 +9,17 @@
 #include <variant>
 #include <vector>
 
+#include "base/directions.h"
 #include "base/parallel.h"
 #include "base/random_stream.h"
-#include "scene/texture.h"
 #include "optics/optics.h"
 #include "optics/specular_event.h"
+#include "scene/texture.h"
 
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
-
-vec3 cosine_direction(const vec3& n, double u1, double u2) {
-  // Orthonormal basis around n (Duff et al. 2017).
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  const vec3 t(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x), b(c, sign + n.y * n.y * a, -n.y);
-  const double r = std::sqrt(u1), phi = 2.0 * pi * u2;
-  return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
-}
-
-vec3 sphere_direction(double u1, double u2) {
-  const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * pi * u2;
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
+using std::numbers::pi;
 
 // What a hit does to a photon, on the side it arrived from: the material
 // logic of the Whitted tracer's describe() (ray_tracer.cpp), which the

@@ -12,23 +12,24 @@
 #include <stdexcept>
 #include <vector>
 
+#include "base/directions.h"
 #include "base/parallel.h"
 #include "base/random_stream.h"
 #include "image/image_metrics.h"
 #include "image/tonemap.h"
+#include "optics/optics.h"
+#include "optics/specular_event.h"
 #include "scene/camera_math.h"
 #include "scene/framing.h"
 #include "scene/sky.h"
 #include "scene/texture.h"
 #include "trace/irradiance_cache.h"
-#include "optics/optics.h"
 #include "trace/progressive_photons.h"
-#include "optics/specular_event.h"
 
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // n stratified points in [0,1)^2 (Latin hypercube: each row and each
 // column of an n x n grid holds one point), for any n.
@@ -42,22 +43,6 @@ void stratified_points(int n, random_stream& rng, std::vector<vec2>& out) {
 // drawn it too (both per solid angle).
 double power_heuristic(double chosen, double other) {
   return chosen * chosen / (chosen * chosen + other * other);
-}
-
-// Orthonormal basis around n (Duff et al. 2017).
-void basis(const vec3& n, vec3& t, vec3& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  t = vec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
-vec3 cosine_direction(const vec3& n, double u1, double u2) {
-  vec3 t, b;
-  basis(n, t, b);
-  const double r = std::sqrt(u1), phi = 2.0 * pi * u2;
-  return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
 }
 
 struct counters {

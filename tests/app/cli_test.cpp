@@ -17,6 +17,7 @@
 
 namespace {
 
+using bounce::test_support::read_text;
 using bounce::test_support::scratch_dir;
 using bounce::test_support::source_path;
 
@@ -24,13 +25,6 @@ struct run_result {
   int code = -1;
   std::string out, err;
 };
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Runs bounce with `args`, behind `prefix` (e.g. "env -u DISPLAY").
 run_result run_env(const std::string& prefix, const std::string& args) {
@@ -40,8 +34,8 @@ run_result run_env(const std::string& prefix, const std::string& args) {
   int status = std::system(command.c_str());
   run_result r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
+  r.out = read_text(out);
+  r.err = read_text(err);
   return r;
 }
 
@@ -82,8 +76,8 @@ TEST(Cli, StatsIsWrittenByEveryCommandThatOffersIt) {
           std::string(command) == "solve" ? "" : " --size 16x16 --out " + dir.path(std::string(command) + ".png");
       run_result r = run(std::string(command) + fast + out + " --stats " + stats);
       ASSERT_EQ(r.code, 0) << command << ": " << r.err;
-      nlohmann::json j = nlohmann::json::parse(slurp(stats), nullptr, false);
-      ASSERT_FALSE(j.is_discarded()) << command << ": " << slurp(stats);
+      nlohmann::json j = nlohmann::json::parse(read_text(stats), nullptr, false);
+      ASSERT_FALSE(j.is_discarded()) << command << ": " << read_text(stats);
       const nlohmann::json& radiosity = std::string(command) == "trace" ? j["radiosity"] : j;
       EXPECT_GT(radiosity["steps"].get<int>(), 0) << command;
       EXPECT_GT(radiosity["elements"].get<int>(), 0) << command;
@@ -346,7 +340,7 @@ TEST(Cli, MirrorDepthSetsTheChainsOfPlanarMirrors) {
     const run_result r = run("solve " + scene + " --mirror-depth " + std::to_string(depth) +
                              " --link-tolerance 1e-3 --until 0.2 --stats " + stats);
     ASSERT_EQ(r.code, 0) << r.err;
-    const auto h = nlohmann::json::parse(slurp(stats))["hierarchical"];
+    const auto h = nlohmann::json::parse(read_text(stats))["hierarchical"];
     EXPECT_EQ(h["mirror_chains"], chains) << depth;
     EXPECT_EQ(h["mirror_links"].get<int>() > 0, depth > 0) << depth;
   }
@@ -364,12 +358,12 @@ TEST(Cli, OnePassAmbientSolutionTakesTheMaxEdge) {
   ASSERT_EQ(r.code, 0) << r.err;
   r = run("solve --max-edge 150 --until 0.2 --stats " + dir.path("b.json"));
   ASSERT_EQ(r.code, 0) << r.err;
-  const auto one_pass = nlohmann::json::parse(slurp(dir.path("a.json")));
-  const auto solved = nlohmann::json::parse(slurp(dir.path("b.json")));
+  const auto one_pass = nlohmann::json::parse(read_text(dir.path("a.json")));
+  const auto solved = nlohmann::json::parse(read_text(dir.path("b.json")));
   EXPECT_EQ(one_pass["radiosity"]["elements"], solved["elements"]);
   r = run("trace --no-radiosity" + fast + " --stats " + dir.path("c.json"));
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(nlohmann::json::parse(slurp(dir.path("c.json")))["radiosity"]["elements"], solved["elements"]);
+  EXPECT_NE(nlohmann::json::parse(read_text(dir.path("c.json")))["radiosity"]["elements"], solved["elements"]);
 }
 
 // The element-count estimate of a tiny --max-edge is computed in double.
@@ -453,7 +447,7 @@ TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
   scratch_dir dir;
   run_result r = run("bench --suite quick --threads 1 --out " + dir.path("bench"));
   ASSERT_EQ(r.code, 0) << r.out << r.err;
-  const nlohmann::json results = nlohmann::json::parse(slurp(dir.path("bench/bench.json")));
+  const nlohmann::json results = nlohmann::json::parse(read_text(dir.path("bench/bench.json")));
   std::set<std::string> methods, scenes, solvers;
   std::size_t points = 0;
   for (const auto& c : results["cases"]) {
@@ -491,12 +485,12 @@ TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
   for (const char* s :
        {"cornell", "occluders", "furnace", "furnace-0.99", "sphere", "squares-perpendicular", "squares-parallel"}) {
     EXPECT_TRUE(scenes.count(s)) << s;
-    EXPECT_EQ(slurp(dir.path("bench/" + std::string(s) + ".svg")).rfind("<svg", 0), 0u) << s;
+    EXPECT_EQ(read_text(dir.path("bench/" + std::string(s) + ".svg")).rfind("<svg", 0), 0u) << s;
   }
   // One CSV row per measured point, under a header.
-  const std::string csv = slurp(dir.path("bench/bench.csv"));
+  const std::string csv = read_text(dir.path("bench/bench.csv"));
   EXPECT_EQ(std::size_t(std::count(csv.begin(), csv.end(), '\n')), points + 1);
-  const std::string md = slurp(dir.path("bench/bench.md"));
+  const std::string md = read_text(dir.path("bench/bench.md"));
   EXPECT_NE(md.find("## Targets"), std::string::npos);
   EXPECT_NE(md.find("## Growth with element count"), std::string::npos);
   EXPECT_NE(md.find("Fitted exponents"), std::string::npos);
@@ -536,7 +530,7 @@ TEST(Cli, TraceTwoPassAndPpmReportPhotonsAndTheCache) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("twopass: 20000 photons"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("(twopass, 4 spp)"), std::string::npos) << r.out;  // default_spp
-  const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("a.json")));
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir.path("a.json")));
   EXPECT_EQ(j["trace"]["photons"]["emitted"].get<long>(), 20000);
   EXPECT_GT(j["trace"]["irradiance_cache"]["records"].get<long>(), 0);
   EXPECT_TRUE(j.contains("radiosity"));
@@ -544,7 +538,7 @@ TEST(Cli, TraceTwoPassAndPpmReportPhotonsAndTheCache) {
           " --max-edge 2 --until 0.05 --out " + dir.path("b.png") + " --stats " + dir.path("b.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("ppm: 15000 photons"), std::string::npos) << r.out;
-  EXPECT_EQ(nlohmann::json::parse(slurp(dir.path("b.json")))["trace"]["photons"]["passes"].get<int>(), 3);
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir.path("b.json")))["trace"]["photons"]["passes"].get<int>(), 3);
 }
 
 TEST(Cli, TraceRejectsBadOptionsAndFiles) {
@@ -589,14 +583,14 @@ TEST(Cli, SolveWritesStatsAndPly) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("mesh: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("done: "), std::string::npos) << r.out;
-  nlohmann::json j = nlohmann::json::parse(slurp(stats));
+  nlohmann::json j = nlohmann::json::parse(read_text(stats));
   for (const char* key : {"elements", "vertices", "steps", "remaining", "seconds", "rays"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_LE(j["remaining"].get<double>(), 0.05);
   EXPECT_GT(j["rays"].get<double>(), 0.0);
   // The PLY header names the radiosity and colour properties, and the
   // counts match the statistics.
-  const std::string text = slurp(ply);
+  const std::string text = read_text(ply);
   for (const char* line : {"ply", "format ascii 1.0", "property float radiosity_r", "property float radiosity_g",
                            "property float radiosity_b", "property uchar red", "property uchar green",
                            "property uchar blue", "end_header"})
@@ -613,14 +607,14 @@ TEST(Cli, AdaptiveMeshingRefinesInSolveRenderAndTrace) {
   EXPECT_NE(r.out.find("a priori refinement: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("refinement at unshot "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("adaptive mesh: "), std::string::npos) << r.out;
-  nlohmann::json j = nlohmann::json::parse(slurp(stats));
+  nlohmann::json j = nlohmann::json::parse(read_text(stats));
   EXPECT_TRUE(j["adaptive"].get<bool>());
   ASSERT_FALSE(j["refinement_passes"].empty());
   const auto& first = j["refinement_passes"][0];
   EXPECT_GT(first["elements_after"].get<int>(), first["elements_before"].get<int>());
   EXPECT_EQ(j["elements"].get<int>(), j["refinement_passes"].back()["elements_after"].get<int>());
   // The PLY is the refined mesh.
-  EXPECT_NE(slurp(ply).find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
+  EXPECT_NE(read_text(ply).find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
 
   r = run("render --adaptive --max-edge 150 --until 0.02 --wireframe --size 64x64 --out " + dir.path("a.png"));
   ASSERT_EQ(r.code, 0) << r.err;
@@ -642,11 +636,11 @@ TEST(Cli, SolveStopsAtTheShotLimitAndComparesWithTheReference) {
   const std::string stats = dir.path("stats.json");
   run_result r = run("solve --max-edge 200 --max-steps 7 --stats " + stats);
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["steps"], 7);
+  EXPECT_EQ(nlohmann::json::parse(read_text(stats))["steps"], 7);
   r = run("solve " + source_path("assets/furnace/furnace.json") + " --max-edge 1 --until 1e-7 --reference --stats " +
           stats);
   ASSERT_EQ(r.code, 0) << r.err;
-  nlohmann::json j = nlohmann::json::parse(slurp(stats));
+  nlohmann::json j = nlohmann::json::parse(read_text(stats));
   EXPECT_LT(j["reference"]["max_relative_difference"].get<double>(), 1e-5);
   EXPECT_LT(j["reference"]["residual_lu"].get<double>(), 1e-12);
 }
@@ -660,7 +654,7 @@ TEST(Cli, SolveRefusesAbsurdMeshes) {
 // --- Conventions of pbrt, Mitsuba and Blender's command lines ---------------
 
 std::string head(const std::string& path, std::size_t n) {
-  return slurp(path).substr(0, n);
+  return read_text(path).substr(0, n);
 }
 
 TEST(Cli, VersionNamesTheProgram) {
@@ -700,12 +694,12 @@ TEST(Cli, HierarchicalSolverStatsSayHowDiffuseLightPassedMirrors) {
   const std::string fast = " --max-edge 150 --until 0.005 --link-tolerance 1e-3 --stats " + dir.path("s.json");
   run_result r = run("solve " + source_path("assets/cornell_caustics/cornell_caustics.json") + fast);
   ASSERT_EQ(r.code, 0) << r.err;
-  nlohmann::json stats = nlohmann::json::parse(slurp(dir.path("s.json")));
+  nlohmann::json stats = nlohmann::json::parse(read_text(dir.path("s.json")));
   EXPECT_EQ(stats["hierarchical"]["specular_passes"], 2) << stats.dump(2);
   EXPECT_EQ(stats["hierarchical"]["specular_shot_fraction"], 1.0) << "a small scene: every patch within the budget";
   r = run("solve" + fast);
   ASSERT_EQ(r.code, 0) << r.err;
-  stats = nlohmann::json::parse(slurp(dir.path("s.json")));
+  stats = nlohmann::json::parse(read_text(dir.path("s.json")));
   EXPECT_EQ(stats["hierarchical"]["specular_passes"], 0) << stats.dump(2);
 }
 
@@ -721,24 +715,24 @@ TEST(Cli, ProgressBarsOnATerminalOnly) {
   const std::string log = dir.path("tty.log");
   const std::string command = "script -qec '" + std::string(BOUNCE_EXE) + " " + args + "' " + log + " >/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0);
-  const std::string seen = slurp(log);
+  const std::string seen = read_text(log);
   EXPECT_NE(seen.find("\rsolving ["), std::string::npos) << seen;
   // The bar is erased before the report, which starts on a clean line.
   EXPECT_NE(seen.find("\r\x1b[Kradiosity: "), std::string::npos) << seen;
   const std::string quiet = "script -qec '" + std::string(BOUNCE_EXE) + " --quiet " + args + "' " + log + " >/dev/null";
   ASSERT_EQ(std::system(quiet.c_str()), 0);
-  EXPECT_EQ(slurp(log).find("solving ["), std::string::npos) << slurp(log);
+  EXPECT_EQ(read_text(log).find("solving ["), std::string::npos) << read_text(log);
 }
 
 TEST(Cli, ThreadsLimitsTheWorkers) {
   scratch_dir dir;
   const std::string stats = dir.path("s.json");
   ASSERT_EQ(run("solve --max-edge 150 --until 0.05 --threads 1 --stats " + stats).code, 0);
-  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["threads"], 1);
+  EXPECT_EQ(nlohmann::json::parse(read_text(stats))["threads"], 1);
   ASSERT_EQ(run("--threads 2 solve --max-edge 150 --until 0.05 --stats " + stats).code, 0);
-  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["threads"], 2);
+  EXPECT_EQ(nlohmann::json::parse(read_text(stats))["threads"], 2);
   ASSERT_EQ(run("solve --max-edge 150 --until 0.05 --stats " + stats).code, 0);
-  EXPECT_GE(nlohmann::json::parse(slurp(stats))["threads"].get<int>(), 1);
+  EXPECT_GE(nlohmann::json::parse(read_text(stats))["threads"].get<int>(), 1);
   for (const char* bad : {"--threads 0 solve", "--threads x solve", "solve --threads -2"})
     EXPECT_EQ(run(bad).code, 2) << bad;
 }
@@ -772,7 +766,8 @@ TEST(Cli, OutputFormatFollowsTheExtension) {
     ASSERT_EQ(run(c + fast + " --out " + dir.path("A.HDR")).code, 0) << c;
     EXPECT_EQ(head(dir.path("A.HDR"), 10), "#?RADIANCE") << c;
     ASSERT_EQ(run(c + fast + " --out " + dir.path("a.pfm")).code, 0) << c;
-    EXPECT_EQ(slurp(dir.path("a.pfm")), slurp(dir.path("ref.pfm"))) << c << ": --out x.pfm is the --pfm picture";
+    EXPECT_EQ(read_text(dir.path("a.pfm")), read_text(dir.path("ref.pfm")))
+        << c << ": --out x.pfm is the --pfm picture";
     run_result r = run(c + fast + " --out " + dir.path("a.jpg"));
     EXPECT_EQ(r.code, 2) << c;
     EXPECT_NE(r.err.find("unknown picture format '.jpg' (use .png, .pfm, .exr or .hdr)"), std::string::npos) << r.err;
@@ -814,9 +809,9 @@ TEST(Cli, TraceDefaultsToACleanSampleCount) {
   scratch_dir dir;
   const std::string stats = dir.path("s.json");
   ASSERT_EQ(run("trace --quiet --size 8x8 --max-edge 150 --until 0.05 --stats " + stats).code, 0);
-  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["trace"]["spp"], 16);
+  EXPECT_EQ(nlohmann::json::parse(read_text(stats))["trace"]["spp"], 16);
   ASSERT_EQ(run("trace --quiet --integrator path --size 8x8 --stats " + stats).code, 0);
-  EXPECT_EQ(nlohmann::json::parse(slurp(stats))["trace"]["spp"], 256);
+  EXPECT_EQ(nlohmann::json::parse(read_text(stats))["trace"]["spp"], 256);
   EXPECT_NE(run("trace --help").out.find("Default: whitted 16"), std::string::npos);
 }
 
@@ -856,7 +851,7 @@ TEST(Cli, CameraFileRendersTheSameViewAsOptions) {
                 dir.path("b.pfm") + " --out " + dir.path("b.png"))
                 .code,
             0);
-  EXPECT_EQ(slurp(dir.path("a.pfm")), slurp(dir.path("b.pfm")));
+  EXPECT_EQ(read_text(dir.path("a.pfm")), read_text(dir.path("b.pfm")));
   ASSERT_EQ(
       run("render --camera " + file + " --size 20x10" + fast + dir.path("c.pfm") + " --out " + dir.path("c.png")).code,
       0);

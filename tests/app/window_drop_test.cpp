@@ -17,6 +17,7 @@
 namespace bounce {
 namespace {
 
+using test_support::read_text;
 using test_support::scratch_dir;
 using test_support::x_server;
 
@@ -38,11 +39,6 @@ std::string read_first_line(const std::string& path) {
   std::string line;
   std::getline(in, line);
   return line;
-}
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 // Dropping second.json on the window showing first.json opens it: the title
@@ -78,11 +74,11 @@ TEST(Window, ADroppedFileOpens) {
       "wait $bounce\n";  // the script's status: bounce's
   const std::string command = "sh " + dir.write("run.sh", script);
   const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << read_all(dir.path("bounce.txt"));
-  EXPECT_EQ(read_first_line(dir.path("drop_status.txt")), "0") << read_all(dir.path("drop.txt"));
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << read_text(dir.path("bounce.txt"));
+  EXPECT_EQ(read_first_line(dir.path("drop_status.txt")), "0") << read_text(dir.path("drop.txt"));
   EXPECT_TRUE(std::filesystem::exists(dir.path("title.txt")))
       << "no window titled 'second.json - Bounce' after the drop\nbounce said:\n"
-      << read_all(dir.path("bounce.txt"));
+      << read_text(dir.path("bounce.txt"));
   EXPECT_EQ(read_first_line(dir.path("config/bounce/recent.txt")),
             std::filesystem::path(second).lexically_normal().string());
 }

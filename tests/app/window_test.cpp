@@ -20,6 +20,7 @@
 namespace bounce {
 namespace {
 
+using test_support::read_text;
 using test_support::scratch_dir;
 using test_support::source_path;
 using test_support::x_server;
@@ -30,17 +31,12 @@ int run(const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // Starts the test's own X server as `server` (Xvfb's messages in the
 // scratch folder); a server that does not start fails the test, saying why.
-#define START_X_SERVER(server, dir)                                                                      \
-  if (!test_support::have_xvfb())                                                                        \
+#define START_X_SERVER(server, dir)                                                                         \
+  if (!test_support::have_xvfb())                                                                           \
     GTEST_SKIP() << "Xvfb is not installed (third_party/install-deps.sh installs it): window test skipped"; \
-  x_server server(dir.path("xvfb.log"));                                                                 \
+  x_server server(dir.path("xvfb.log"));                                                                    \
   ASSERT_TRUE(server.ok()) << server.error()
 
 // `bounce view ARGS` on `server`: its exit code (-1: it did not exit),
@@ -56,7 +52,7 @@ window_run run_window(const x_server& server, const scratch_dir& dir, const std:
               args + " >" + dir.path("out.txt") + " 2>&1";
   const int status = std::system(r.command.c_str());
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.output = read_all(dir.path("out.txt"));
+  r.output = read_text(dir.path("out.txt"));
   return r;
 }
 
@@ -64,8 +60,9 @@ TEST(Window, OpensUnderXvfbSolvesAndTakesAScreenshot) {
   scratch_dir dir;
   START_X_SERVER(server, dir);
   const window_run run =
-      run_window(server, dir, source_path("assets/cornell_box/cornell_box.json") + " --max-edge 60 --frames 120 --screenshot " +
-                          dir.path("window.png") + " --exit");
+      run_window(server, dir,
+                 source_path("assets/cornell_box/cornell_box.json") + " --max-edge 60 --frames 120 --screenshot " +
+                     dir.path("window.png") + " --exit");
   ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   int w = 0, h = 0;
   std::vector<unsigned char> rgb;
@@ -88,8 +85,9 @@ TEST(Window, RayTracesAStillWhileTheViewRuns) {
   START_X_SERVER(server, dir);
   // As the panel's button: the still of the current camera from the latest
   // solution, traced on its own thread while frames keep coming.
-  const window_run run = run_window(server, dir, "--size 120x120 --max-edge 80 --frames 30 --still " + dir.path("still.png") +
-                                             " --screenshot " + dir.path("window.png") + " --exit");
+  const window_run run = run_window(server, dir,
+                                    "--size 120x120 --max-edge 80 --frames 30 --still " + dir.path("still.png") +
+                                        " --screenshot " + dir.path("window.png") + " --exit");
   ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   int w = 0, h = 0;
   std::vector<unsigned char> rgb;
@@ -111,7 +109,8 @@ TEST(Window, ShowsTheMeshRefiningWhileItSolves) {
   // Adaptive meshing in the window: each refinement pass brings a larger
   // mesh, uploaded between frames.
   const window_run run = run_window(
-      server, dir, "--max-edge 150 --adaptive --until 1e-3 --frames 40 --screenshot " + dir.path("window.png") + " --exit");
+      server, dir,
+      "--max-edge 150 --adaptive --until 1e-3 --frames 40 --screenshot " + dir.path("window.png") + " --exit");
   ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   const std::string& text = run.output;
   std::size_t shown = 0, meshed = 0;
@@ -130,7 +129,8 @@ TEST(Window, ShowsTheMeshRefiningWhileItSolves) {
 TEST(Window, PlotsTheErrorAgainstAPathTracedReference) {
   scratch_dir dir;
   START_X_SERVER(server, dir);
-  const window_run run = run_window(server, dir, "--size 160x120 --max-edge 80 --until 1e-3 --frames 10 --error-plot --exit");
+  const window_run run =
+      run_window(server, dir, "--size 160x120 --max-edge 80 --until 1e-3 --frames 10 --error-plot --exit");
   const std::string& text = run.output;
   ASSERT_EQ(run.code, 0) << run.command << "\n" << text;
   EXPECT_NE(text.find("64x64 path traced, 1024 spp"), std::string::npos) << text;
@@ -178,7 +178,6 @@ TEST(Window, OpensAGeneratedSceneAndReportsItsTimes) {
   EXPECT_GE(lit_ms, mesh_ms);
 }
 
-
 // The title bar names the scene, and the scene joins the recent list kept
 // in the user's configuration folder.
 TEST(Window, TitleNamesTheSceneAndItJoinsTheRecentList) {
@@ -214,11 +213,11 @@ TEST(Window, TitleNamesTheSceneAndItJoinsTheRecentList) {
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
   EXPECT_TRUE(std::filesystem::exists(dir.path("title.txt")))
       << "no window titled 'cornell_box.json - Bounce' on display " << server.display() << "; bounce said:\n"
-      << read_all(dir.path("bounce.txt"));
+      << read_text(dir.path("bounce.txt"));
   std::ifstream recent(recent_file);
   std::string first;
   std::getline(recent, first);
-  EXPECT_EQ(first, std::filesystem::path(scene).lexically_normal().string()) << read_all(dir.path("bounce.txt"));
+  EXPECT_EQ(first, std::filesystem::path(scene).lexically_normal().string()) << read_text(dir.path("bounce.txt"));
 }
 
 // Mean absolute difference of two 8-bit pictures of one size, over 10 x 10
@@ -262,8 +261,9 @@ TEST(Window, TheViewAtRestConvergesTowardsTheStill) {
     std::filesystem::create_directories(shots);
     // The last frame waits for 2 passes (slow machines and sanitizers trace slowly).
     const window_run run =
-        run_window(server, dir, "--size 96x96 --frames 60 --screenshot " + shots + "/last.png --no-panel-in-screenshot --exit" +
-                            (refine ? " --refined-passes 2" : " --no-refine-at-rest"));
+        run_window(server, dir,
+                   "--size 96x96 --frames 60 --screenshot " + shots + "/last.png --no-panel-in-screenshot --exit" +
+                       (refine ? " --refined-passes 2" : " --no-refine-at-rest"));
     ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
     errors[refine] = block_difference(shots + "/last.png", dir.path("still.png"));
   }
@@ -278,10 +278,11 @@ TEST(Window, TexturesAndAMirrorShowInTheLiveView) {
   // grey: rho 0.05).
   scratch_dir dir;
   START_X_SERVER(server, dir);
-  const window_run run = run_window(server, dir, source_path("assets/whitted/whitted.json") +
-                                             " --size 96x72 --frames 60 --no-refine-at-rest --no-panel-in-screenshot "
-                                             "--screenshot " +
-                                             dir.path("window.png") + " --exit");
+  const window_run run = run_window(server, dir,
+                                    source_path("assets/whitted/whitted.json") +
+                                        " --size 96x72 --frames 60 --no-refine-at-rest --no-panel-in-screenshot "
+                                        "--screenshot " +
+                                        dir.path("window.png") + " --exit");
   ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
   int w = 0, h = 0;
   std::vector<unsigned char> rgb;
@@ -321,7 +322,6 @@ TEST(Window, TexturesAndAMirrorShowInTheLiveView) {
   EXPECT_GT(mirror_red, mirror_pixels / 20);
   EXPECT_GT(mirror_yellow, mirror_pixels / 20);
 }
-
 
 }  // namespace
 }  // namespace bounce

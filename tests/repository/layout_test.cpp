@@ -19,6 +19,7 @@ namespace bounce {
 namespace {
 
 namespace fs = std::filesystem;
+using test_support::read_text;
 
 // core/'s folders from the bottom up; a file may include its own folder's
 // headers and those of folders on lower layers, never a sibling's on the
@@ -42,11 +43,6 @@ const std::map<std::string, int> core_layers = {
 const std::map<std::string, int> app_layers = {
     {"common", 0}, {"render", 1}, {"headless", 2}, {"viewer", 3}, {"bench", 3}, {"cli", 4}, {"", 5},
 };
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 std::vector<fs::path> source_files(const std::string& root) {
   std::vector<fs::path> out;

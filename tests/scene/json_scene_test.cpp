@@ -13,19 +13,10 @@
 namespace bounce {
 namespace {
 
+using test_support::json_scene;
 using test_support::load_error_of;
 using test_support::load_ok;
 using test_support::scratch_dir;
-
-// A JSON scene around one surface entry, with a light so it is valid.
-std::string json_scene(const std::string& surface_json, const std::string& extra = "") {
-  return R"({
-  "materials": {"white": {"rho": [0.5, 0.5, 0.5]}},
-  "surfaces": [)" +
-         surface_json + R"(],
-  "lights": [{"position": [0, 5, 0], "intensity": [1, 1, 1]}])" +
-         extra + "\n}\n";
-}
 
 TEST(JsonScene, RoundTripOfEveryShape) {
   scratch_dir dir;

@@ -16,7 +16,7 @@
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 vec3 triangle_cross(const triangle_mesh& m, const glm::ivec3& t) {
   return glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);

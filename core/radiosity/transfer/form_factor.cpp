@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <numbers>
 
 #include "base/parallel.h"
 #include "base/random_stream.h"
@@ -15,7 +16,7 @@
 namespace bounce {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 // Polygon clipped to the half-space n . (x - p) >= 0 (Sutherland-Hodgman).
 // `out` holds at least in.size() + 1 points (a convex cut adds at most one).

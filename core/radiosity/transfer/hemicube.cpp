@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <tbb/parallel_for.h>
 
@@ -14,7 +15,7 @@
 namespace bounce {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 struct face_frame {
   vec3 u, v, w;       // screen x, screen y, view direction

@@ -13,7 +13,7 @@
 namespace bounce {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Barycentric coordinates of a uniform point on a triangle (sqrt warp).
 vec3 uniform_barycentric(double u1, double u2) {

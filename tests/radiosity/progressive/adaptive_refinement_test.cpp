@@ -12,6 +12,7 @@
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
 #include "mesh_checks.h"
+#include "progressive_runs.h"
 #include "radiosity/progressive/adaptive_refinement.h"
 #include "radiosity/progressive/progressive.h"
 #include "radiosity/progressive/reference_solver.h"
@@ -29,13 +30,7 @@ using test_support::furnace;
 using test_support::hanging_vertices;
 using test_support::load_ok;
 using test_support::mesh_of;
-
-// Shoots until the point lights have shot and the unshot fraction is at
-// most `fraction`, or nothing is left.
-void run_until(progressive_state& state, double fraction) {
-  while (!(state.lights_shot && state.stats.unshot_fraction <= fraction) && step_progressive(state)) {
-  }
-}
+using test_support::run_until;
 
 progressive_params adaptive(double tolerance) {
   progressive_params p;

@@ -8,6 +8,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh_builders.h"
+#include "progressive_runs.h"
 #include "radiosity/progressive/progressive.h"
 #include "radiosity/progressive/reference_solver.h"
 #include "radiosity/solver.h"
@@ -23,20 +24,12 @@ using test_support::add_polygon;
 using test_support::furnace;
 
 using test_support::mesh_of;
+using test_support::run_until;
 
 progressive_params with_rays(int rays) {
   progressive_params p;
   p.form_factors.shadow_rays = rays;
   return p;
-}
-
-// Shoots until the point lights have shot and the unshot fraction is at
-// most `fraction` (0: no limit), after `max_shots` shots (0: no limit), or
-// when nothing is left.
-void run_until(progressive_state& state, double fraction, std::uint64_t max_shots = 0) {
-  while (!(fraction > 0.0 && state.lights_shot && state.stats.unshot_fraction <= fraction) &&
-         !(max_shots > 0 && state.stats.shots >= max_shots) && step_progressive(state)) {
-  }
 }
 
 scene cornell(double scale = 1.0) {
