@@ -40,6 +40,9 @@ using nlohmann::json;
 
 json point_json(const bench_point& p) {
   auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json surfaces = json::array();
+  for (const surface_mean& m : p.surfaces)
+    surfaces.push_back({{"material", m.material}, {"pixels", m.pixels}, {"ratio", number(m.ratio)}});
   return {{"seconds", p.seconds},
           {"cpu_seconds", number(p.cpu_seconds)},
           {"steps", p.steps},
@@ -50,7 +53,8 @@ json point_json(const bench_point& p) {
           {"power_error", number(p.power_error)},
           {"balance_error", number(p.balance_error)},
           {"residual", number(p.residual)},
-          {"elements", p.elements}};
+          {"elements", p.elements},
+          {"surfaces", surfaces}};
 }
 
 // A memory figure of this process from /proc/self/status, in MiB (0 if
@@ -221,7 +225,7 @@ void add_bench_options(CLI::App& command, bench_options& options) {
               "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
               "(Cornell box); scale: procedural scenes of 10k to 1M triangles, hierarchical vs progressive; rays: "
               "the ray core's rays/s against Embree's own on the same rays")
-          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical", "rays"}))
+          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical", "clutter", "rays"}))
           ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();

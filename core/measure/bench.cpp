@@ -85,12 +85,14 @@ bench_result run_radiosity_solver(const scene& s, const bench_setting& setting, 
       const auto view = pictures->judge_solution(mesh, solution->radiosity, {}, diffuse_source::radiosity);
       p.error = view.error;
       p.max_error = view.max_error;
+      p.surfaces = view.surfaces;
       const auto still =
           pictures->judge_solution(mesh, solution->radiosity, solution->direct, diffuse_source::traced_direct);
       two_pass.seconds += still.seconds;
       two_pass.cpu_seconds += still.cpu_seconds;
       two_pass.error = still.error;
       two_pass.max_error = still.max_error;
+      two_pass.surfaces = still.surfaces;
       result.curves[1].points.push_back(two_pass);
     });
     result.curves[0].points.push_back(p);
@@ -155,6 +157,7 @@ bench_result run_reference(const scene& s, const bench_setting& setting, const b
       const auto v = pictures->judge_solution(mesh, radiosity, {}, diffuse_source::radiosity);
       p.error = v.error;
       p.max_error = v.max_error;
+      p.surfaces = v.surfaces;
     }
     return p;
   };
@@ -192,6 +195,7 @@ bench_result run_path(const scene& s, const bench_setting& setting, const bench_
     const auto v = pictures.judge(picture);
     p.error = v.error;
     p.max_error = v.max_error;
+    p.surfaces = v.surfaces;
     result.curves[0].points.push_back(p);
     spent += stats.seconds;
   }

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "measure/surface_means.h"
+
 namespace bounce {
 
 inline constexpr double not_measured = std::numeric_limits<double>::quiet_NaN();
@@ -19,12 +21,13 @@ struct bench_point {
   std::uint64_t steps = 0;
   std::uint64_t rays = 0;
   double remaining = not_measured;
-  double error = not_measured;          // relative RMSE: per vertex (closed form) or over the picture
-  double max_error = not_measured;      // largest relative error, same samples
-  double power_error = not_measured;    // reflected power against the closed form, relative
-  double balance_error = not_measured;  // progressive: |emitted + received - shot - unshot| / (emitted + received)
-  double residual = not_measured;       // matrix solvers: max |(I - R K) B - b| / max |b|
-  std::size_t elements = 0;             // elements of the mesh at this point (adaptive meshing grows it)
+  double error = not_measured;           // relative RMSE: per vertex (closed form) or over the picture
+  double max_error = not_measured;       // largest relative error, same samples
+  double power_error = not_measured;     // reflected power against the closed form, relative
+  double balance_error = not_measured;   // progressive: |emitted + received - shot - unshot| / (emitted + received)
+  double residual = not_measured;        // matrix solvers: max |(I - R K) B - b| / max |b|
+  std::size_t elements = 0;              // elements of the mesh at this point (adaptive meshing grows it)
+  std::vector<surface_mean> surfaces{};  // pictures: the mean per material against the reference's
 };
 
 // One curve of the plot: a method/setting and its error over time.

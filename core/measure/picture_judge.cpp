@@ -15,11 +15,20 @@ picture_judge::picture_judge(const scene& s, const camera& view, const bench_tru
   image reference = truth.picture;
   exclude_pixels(reference, bright_pixels(reference, truth.exclude_above), 1);
   reference_ = downsample(reference, downsample_);
+  camera at_size = view;
+  at_size.width = reference.width;
+  at_size.height = reference.height;
+  material_ = material_per_pixel(s, at_size, rays_);
+  full_reference_ = std::move(reference);
 }
 
 picture_judge::verdict picture_judge::judge(const image& picture) const {
   const image small = downsample(picture, downsample_);
-  return {relative_rmse(small, reference_), max_relative_error(small, reference_)};
+  verdict v;
+  v.error = relative_rmse(small, reference_);
+  v.max_error = max_relative_error(small, reference_);
+  v.surfaces = surface_means(picture, full_reference_, material_, scene_);
+  return v;
 }
 
 picture_judge::verdict picture_judge::judge_solution(const patch_mesh& mesh, std::span<const rgb> radiosity,

@@ -1,15 +1,18 @@
 // Pictures against a reference picture: the error of a solution through
 // the picture it makes (the Gouraud view's diffuse term, or a two-pass
-// still), box-filtered, with the emitters' pixels left out. The bench and
-// the window's error plot both use it.
+// still), box-filtered, with the emitters' pixels left out, and its mean
+// per material (surface_means.h). The bench and the window's error plot
+// both use it.
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "image/image.h"
 #include "measure/curves.h"
 #include "measure/exact_solutions.h"
+#include "measure/surface_means.h"
 #include "mesh/patch_mesh.h"
 #include "trace/ray_scene.h"
 #include "trace/ray_tracer.h"
@@ -41,6 +44,7 @@ class picture_judge {
   struct verdict {
     double error = not_measured, max_error = not_measured;
     double seconds = 0.0, cpu_seconds = 0.0;  // to make the picture (radiosity field + tracing)
+    std::vector<surface_mean> surfaces;       // the picture's mean per material, against the reference's
   };
   verdict judge(const image& picture) const;
   // A still of the solution at the reference's size: all diffuse light from
@@ -55,7 +59,9 @@ class picture_judge {
   camera view_;
   int downsample_ = 4, still_spp_ = 4;
   ray_scene rays_;
-  image reference_;
+  image reference_;       // box-filtered
+  image full_reference_;  // at full size, for the means per material
+  std::vector<int> material_;
 };
 
 // Radiance above which a reference pixel counts as showing an emitter: half
