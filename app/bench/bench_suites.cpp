@@ -20,6 +20,10 @@ const bench_scene bench_scenes[] = {
     {"squares-perpendicular", "embedded:bench/squares_perpendicular.json", exact_kind::emitter_receiver},
     {"squares-parallel", "embedded:bench/squares_parallel.json", exact_kind::emitter_receiver},
     // Built in code (procedural.h), measured against path-traced pictures.
+    {"box-room-1", nullptr, exact_kind::none},
+    {"box-room-10", nullptr, exact_kind::none},
+    {"box-room-open-10", nullptr, exact_kind::none},
+    {"box-room-30", nullptr, exact_kind::none},
     {"box-room-60", nullptr, exact_kind::none},
     {"interior-10k", nullptr, exact_kind::none},
     {"interior-30k", nullptr, exact_kind::none},
@@ -199,6 +203,23 @@ suite_plan make_suite(const std::string& suite) {
       plan.cases.push_back(default_case("interior-100k", solver_method::hierarchical, 120.0, threads));
     plan.picture_size = 128;
     plan.reference_spp = 512;
+    return plan;
+  }
+  if (suite == "clutter") {
+    // Rooms of boxes, where coarse transfers lose light: the mean per
+    // material (ceiling, walls, floor, boxes) against the path tracer's,
+    // from one box (no bias expected) to a 30 x 30 grid, closed and open
+    // (no wall behind the camera, the closed scene's normaliser off), with each
+    // solver's defaults, and the hierarchical solver at lower tolerances
+    // on the 10 x 10 grid to show what the defaults leave.
+    for (const char* scene : {"box-room-1", "box-room-10", "box-room-open-10", "box-room-30"}) {
+      plan.cases.push_back(default_case(scene, solver_method::hierarchical, 60.0));
+      plan.cases.push_back(default_case(scene, solver_method::progressive, 60.0));
+      add_path(plan, scene, 15.0);
+    }
+    for (double tolerance : {1e-6, 1e-7}) plan.cases.push_back(hierarchical_case("box-room-10", tolerance, 120.0));
+    plan.picture_size = 128;
+    plan.reference_spp = 1024;
     return plan;
   }
   if (suite == "adaptive") {

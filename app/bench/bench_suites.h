@@ -45,7 +45,7 @@ struct suite_plan {
 // The bench scene named `name` (one of the suites' scene names).
 const bench_scene& find_scene(const std::string& name);
 
-// The cases of a suite: "quick", "adaptive", "scale" or "full" (anything else).
+// The cases of a suite: "quick", "hierarchical", "clutter", "adaptive", "scale" or "full" (anything else).
 suite_plan make_suite(const std::string& suite);
 
 // Names for reports: the solver (hierarchical, progressive, reference,

@@ -500,11 +500,11 @@ bool parse_count(std::string_view text, std::uint64_t& out) {
 
 }  // namespace
 
-scene make_box_room(int boxes_per_side) {
+scene make_box_room(int boxes_per_side, bool open) {
   BOUNCE_CHECK(boxes_per_side >= 1);
   const int n = boxes_per_side;
   scene s;
-  s.source = "box-room-" + std::to_string(n);
+  s.source = (open ? "box-room-open-" : "box-room-") + std::to_string(n);
   s.materials = {diffuse("floor", rgb(0.6)),           diffuse("wall", {0.7, 0.7, 0.65}),
                  diffuse("ceiling", rgb(0.75)),        emitter("light", rgb(8.0)),
                  diffuse("box red", {0.7, 0.3, 0.25}), diffuse("box green", {0.3, 0.6, 0.35}),
@@ -515,7 +515,7 @@ scene make_box_room(int boxes_per_side) {
   const double half = 5.0, height = 3.0;
   b.rect(floor_m, {-half, 0, -half}, {0, 0, 2 * half}, {2 * half, 0, 0});
   b.wall(wall_m, {-half, 0, -half}, {1, 0, 0}, 2 * half, height);
-  b.wall(wall_m, {half, 0, half}, {-1, 0, 0}, 2 * half, height);
+  if (!open) b.wall(wall_m, {half, 0, half}, {-1, 0, 0}, 2 * half, height);  // behind the camera
   b.wall(wall_m, {-half, 0, half}, {0, 0, -1}, 2 * half, height);
   b.wall(wall_m, {half, 0, -half}, {0, 0, 1}, 2 * half, height);
   const double lines[4] = {-half, -1.0, 1.0, half};  // a 2 x 2 light: 1/25 of the ceiling
@@ -570,16 +570,17 @@ std::size_t triangle_count(const scene& s) {
 
 bool make_procedural_scene(std::string_view name, scene& out, std::string& error) {
   const std::string quoted = "procedural scene '" + std::string(name) + "'";
-  constexpr std::string_view box_room = "box-room-", interior = "interior-";
+  constexpr std::string_view box_room = "box-room-", open_room = "box-room-open-", interior = "interior-";
   std::uint64_t value = 0;
   if (name.starts_with(box_room)) {
-    const std::string_view text = name.substr(box_room.size());
+    const bool open = name.starts_with(open_room);
+    const std::string_view text = name.substr(open ? open_room.size() : box_room.size());
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < 1 || value > 1000) {
       error = quoted + ": '" + std::string(text) + "' is not a number of boxes per side from 1 to 1000";
       return false;
     }
-    out = make_box_room(int(value));
+    out = make_box_room(int(value), open);
     return true;
   }
   if (name.starts_with(interior)) {
@@ -598,7 +599,8 @@ bool make_procedural_scene(std::string_view name, scene& out, std::string& error
     return true;
   }
   error = "unknown " + quoted +
-          ": expected box-room-<boxes per side> (e.g. box-room-60) or interior-<triangles> (e.g. " +
+          ": expected box-room-<boxes per side> (e.g. box-room-60), box-room-open-<boxes per side> or "
+          "interior-<triangles> (e.g. " +
           "interior-10k, interior-1m)";
   return false;
 }

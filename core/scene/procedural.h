@@ -20,8 +20,9 @@ namespace bounce {
 // ceiling light and boxes_per_side^2 boxes in a jittered grid on the floor,
 // 0.2 to 1.2 high. A box has no bottom face: 5 quads, 10 triangles. The
 // room adds 28 triangles (its ceiling is 8 quads around the light).
-// boxes_per_side >= 1.
-scene make_box_room(int boxes_per_side);
+// Open: without the wall behind the camera (26 triangles for the room),
+// so that light leaves the room. boxes_per_side >= 1.
+scene make_box_room(int boxes_per_side, bool open = false);
 
 // make_box_room's triangles: the room's, plus so many per box.
 inline constexpr std::size_t box_room_fixed_triangles = 28;
@@ -46,7 +47,7 @@ inline constexpr std::size_t interior_max_triangles = 20'000'000;
 std::size_t triangle_count(const scene& s);
 
 // Builds a procedural scene by name: "box-room-<boxes per side>" (1 to
-// 1000) or "interior-<triangles>" with an optional k (1,000) or m
+// 1000), "box-room-open-<boxes per side>" or "interior-<triangles>" with an optional k (1,000) or m
 // (1,000,000) suffix, e.g. "box-room-60", "interior-100k", "interior-1m".
 // False with `error` naming the name when it is none of these.
 bool make_procedural_scene(std::string_view name, scene& out, std::string& error);

@@ -211,12 +211,16 @@ TEST(Procedural, NamesMakeScenesOrClearErrors) {
   std::string error;
   ASSERT_TRUE(make_procedural_scene("box-room-20", s, error)) << error;
   EXPECT_EQ(triangle_count(s), 400u * 10 + 28);
+  ASSERT_TRUE(make_procedural_scene("box-room-open-20", s, error)) << error;
+  EXPECT_EQ(triangle_count(s), 400u * 10 + 26);  // the wall behind the camera is gone
+  EXPECT_EQ(s.source, "box-room-open-20");
   ASSERT_TRUE(make_procedural_scene("interior-10k", s, error)) << error;
   EXPECT_NEAR(double(triangle_count(s)), 10'000.0, 1'500.0);
   ASSERT_TRUE(make_procedural_scene("interior-25000", s, error)) << error;
   EXPECT_NEAR(double(triangle_count(s)), 25'000.0, 3'750.0);
-  for (const char* bad : {"interior-abc", "nonsense", "interior-", "interior-10x", "interior-1k", "box-room-0",
-                          "box-room-", "box-room-6k", "box-room-1001", "interior-100g"}) {
+  for (const char* bad :
+       {"interior-abc", "nonsense", "interior-", "interior-10x", "interior-1k", "box-room-0", "box-room-",
+        "box-room-6k", "box-room-1001", "interior-100g", "box-room-open-0", "box-room-open-"}) {
     error.clear();
     EXPECT_FALSE(make_procedural_scene(bad, s, error)) << bad;
     EXPECT_NE(error.find(std::string("'") + bad + "'"), std::string::npos) << error;
