@@ -476,7 +476,23 @@ TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
           EXPECT_GE(p["error"].get<double>(), 0.0);
           EXPECT_LT(p["error"].get<double>(), 10.0) << curve["label"];
         }
+        // Pictures carry their mean per material; closed forms are per vertex.
+        if (!c["growth"].get<bool>() && c["truth"] == "path-traced picture") {
+          EXPECT_FALSE(p["surfaces"].empty()) << curve["label"];
+          for (const auto& m : p["surfaces"]) {
+            EXPECT_GT(m["pixels"].get<std::size_t>(), 0u);
+            EXPECT_GT(m["ratio"].get<double>(), 0.0) << curve["label"] << " " << m["material"];
+          }
+        }
       }
+    }
+  }
+  // The path tracer's own pictures are unbiased: at their most samples,
+  // every material's mean is the reference's within noise.
+  for (const auto& c : results["cases"]) {
+    if (c["solver"] != "path") continue;
+    for (const auto& m : c["curves"][0]["points"].back()["surfaces"]) {
+      EXPECT_NEAR(m["ratio"].get<double>(), 1.0, 0.1) << c["scene"] << " " << m["material"];
     }
   }
   for (const char* m : {"raycast", "hemicube", "hierarchical", "reference-lu", "gauss-seidel", "path", "two-pass"})
