@@ -178,7 +178,7 @@ TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmitters
   // emitter's light to the floor as its image's: what those links bring
   // from the emitters (gathered_mirrored, the caustic part of the
   // solution) against Lambert's formula on the image, at each floor
-  // element's centre, where the final gather evaluates it.
+  // vertex, where the final gather evaluates it.
   const double kr = 0.9;
   const scene s = mirror_ceiling_scene(kr);
   const patch_mesh mesh = mesh_of(s, 0.125);
@@ -195,21 +195,22 @@ TEST(SpecularTransfer, HierarchicalLinksThroughAMirrorLightTheFloorAsTheEmitters
     EXPECT_EQ(h.hierarchy.chains.size(), 1u);
     EXPECT_GT(h.hierarchy.mirror_links.size(), 100u);
     EXPECT_EQ(h.progress.specular_passes, 0);  // a planar mirror alone: nothing left for the passes
-    EXPECT_EQ(h.gathered.mirrored.size(), mesh.element_count());
+    EXPECT_EQ(h.gathered.mirrored.size(), h.mesh().vertex_count());
     EXPECT_EQ(make_snapshot(*solver)->caustic.size(), mesh.vertex_count());
     result out;
     double sum = 0.0, expected_sum = 0.0;
-    for (std::size_t e = 0; e < h.gathered.mirrored.size(); ++e) {
-      const cluster_node& leaf = h.hierarchy.tree.nodes[std::size_t(h.hierarchy.tree.leaf_of_element[e])];
-      const double r = std::max(std::abs(leaf.centroid.x), std::abs(leaf.centroid.z));
-      if (leaf.centroid.y > 1e-9 || r > 1.5 || r < 0.4) continue;  // the floor, off its edge and the lamp's shadow
-      const double expected = 0.5 * pi * kr * point_polygon_form_factor(leaf.centroid, leaf.normal, image);
-      out.worst = std::max(out.worst, std::abs(h.gathered.mirrored[e].g / expected - 1.0));
-      sum += h.gathered.mirrored[e].g;
+    const patch_mesh& solved = h.mesh();
+    for (std::size_t v = 0; v < h.gathered.mirrored.size(); ++v) {
+      const vec3& p = solved.receive_points[v];
+      const double r = std::max(std::abs(p.x), std::abs(p.z));
+      if (p.y > 1e-9 || r > 1.5 || r < 0.4) continue;  // the floor, off its edge and the lamp's shadow
+      const double expected = 0.5 * pi * kr * point_polygon_form_factor(p, solved.normals[v], image);
+      out.worst = std::max(out.worst, std::abs(h.gathered.mirrored[v].g / expected - 1.0));
+      sum += h.gathered.mirrored[v].g;
       expected_sum += expected;
     }
     out.total = sum / expected_sum;
-    std::printf("tolerance %g: %zu links through the mirror, floor total %.5f of exact, worst element %.4f off\n",
+    std::printf("tolerance %g: %zu links through the mirror, floor total %.5f of exact, worst vertex %.4f off\n",
                 tolerance, h.hierarchy.mirror_links.size(), out.total, out.worst);
     return out;
   };

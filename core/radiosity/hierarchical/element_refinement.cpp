@@ -89,7 +89,7 @@ bool split_marked_elements(hierarchical_solver& solver) {
   link_table<mirror_link> mirror_links = std::move(h.mirror_links);
   renumber_links(links, node_of_old);
   renumber_links(mirror_links, node_of_old);
-  const element_light light = std::move(solver.light);
+  const light_parts light = std::move(solver.light);
   solver.meshes.refined = refined;
   solver.meshes.current = refined.get();
   if (!solver.sources.specular_lamp.empty()) solver.sources.specular_lamp = carried(solver.sources.specular_lamp, from);

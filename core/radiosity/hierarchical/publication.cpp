@@ -29,13 +29,14 @@ vertex_light publish_vertex_light(hierarchical_solver& h) {
   vertex_light out;
   const bool gathered = solution_final(h) && h.residual_fraction <= h.params.refine_below && final_gather(h);
   if (gathered) {
-    std::vector<rgb> b(h.light.total.size()), d(h.light.total.size());
-    for (std::size_t e = 0; e < b.size(); ++e) {
-      b[e] = src.emission[e] + src.lamp[e] + h.gathered.total[e];
-      d[e] = src.lamp[e] - (src.specular_lamp.empty() ? rgb(0.0) : src.specular_lamp[e]) + h.gathered.direct[e];
-    }
-    out.radiosity = element_to_vertex(mesh, b);
-    out.direct = element_to_vertex(mesh, d);
+    // Gathered at the vertices: the point lights included; their light by
+    // way of mirrors and glass stays per element.
+    out.radiosity.resize(mesh.vertex_count());
+    out.direct = h.gathered.direct;
+    const std::vector<rgb> specular =
+        src.specular_lamp.empty() ? std::vector<rgb>() : element_to_vertex(mesh, src.specular_lamp);
+    for (std::size_t v = 0; v < out.radiosity.size(); ++v)
+      out.radiosity[v] = mesh.vertex_emission[v] + h.gathered.total[v] + (specular.empty() ? rgb(0.0) : specular[v]);
   } else {
     out.radiosity = element_to_vertex(mesh, h.light.total);
     out.direct = element_to_vertex(mesh, h.light.direct);
@@ -44,14 +45,15 @@ vertex_light publish_vertex_light(hierarchical_solver& h) {
   // right-hand-side term, and through the links through mirrors: B's
   // caustic part is that term plus what those links bring from the emitters.
   if (!src.specular_lamp_input.empty() || !h.hierarchy.mirror_links.empty()) {
-    const std::vector<rgb>& mirrored = gathered ? h.gathered.mirrored : h.light.mirrored;
     std::vector<rgb> caustic(mesh.element_count(), rgb(0.0));
-    for (std::size_t e = 0; e < caustic.size(); ++e) {
-      if (!src.specular_lamp_input.empty())
+    if (!src.specular_lamp_input.empty())
+      for (std::size_t e = 0; e < caustic.size(); ++e)
         caustic[e] = src.specular_lamp_input[std::size_t(h.meshes.input_element[e])];
-      if (e < mirrored.size()) caustic[e] += mirrored[e];
-    }
+    if (!gathered)
+      for (std::size_t e = 0; e < caustic.size() && e < h.light.mirrored.size(); ++e) caustic[e] += h.light.mirrored[e];
     out.caustic = element_to_vertex(mesh, caustic);
+    if (gathered)
+      for (std::size_t v = 0; v < out.caustic.size(); ++v) out.caustic[v] += h.gathered.mirrored[v];
   }
   return out;
 }

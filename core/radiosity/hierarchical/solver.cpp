@@ -22,7 +22,7 @@ void update_residual(hierarchical_solver& solver) {
 // The direct light (plain links from the emitters, and the point lights
 // straight), and the emitters' light through mirror links.
 void update_direct(hierarchical_solver& solver) {
-  element_light& light = solver.light;
+  light_parts& light = solver.light;
   gather_push(solver, solver.sources.emission, light.direct, &light.mirrored);
   ++solver.progress.operator_applications;
   const link_hierarchy& h = solver.hierarchy;

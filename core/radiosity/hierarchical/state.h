@@ -64,10 +64,10 @@ struct element_sources {
   bool has_path_targets = false;  // curved mirrors or glass: the passes have paths to trace
 };
 
-// Light per element: all of it, the part received straight from emitters
-// and point lights, and the part received from emitters through mirror
-// links (a caustic).
-struct element_light {
+// Light per element (the solution) or per vertex (the final gather): all
+// of it, the part received straight from emitters and point lights, and
+// the part received from emitters through mirror links (a caustic).
+struct light_parts {
   std::vector<rgb> total;
   std::vector<rgb> direct;
   std::vector<rgb> mirrored;
@@ -109,13 +109,13 @@ struct hierarchical_solver {
   solved_meshes meshes;
   link_hierarchy hierarchy;
   element_sources sources;
-  element_light light;             // B, the solution
+  light_parts light;               // B, the solution
   std::vector<rgb> residual;       // E + lamp + K B - B
   double residual_fraction = 1.0;  // its power over the emitted power
-  // Final gather: each element's reflected light with the kernel evaluated
-  // at the element itself over the links of it and its ancestors (empty
-  // until made).
-  element_light gathered;
+  // Final gather: each vertex's reflected light with the kernel evaluated
+  // at the vertex over the links above its elements (final_gather.h;
+  // empty until made). Indexed by vertex, unlike `light`.
+  light_parts gathered;
   // Per element, the bisections the last link refinement asked for
   // (empty: none; element_refinement.h).
   std::vector<std::uint8_t> split_marks;

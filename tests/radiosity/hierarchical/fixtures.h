@@ -41,6 +41,15 @@ inline scene cornell() {
   return default_cornell_box();
 }
 
+// The integral over the mesh of per-vertex values, interpolated linearly
+// over each element as the Gouraud view shows them.
+inline rgb integral_over_elements(const patch_mesh& mesh, const std::vector<rgb>& per_vertex) {
+  rgb sum(0.0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) sum += per_vertex[std::size_t(mesh.elements[e][k])] * (mesh.element_areas[e] / 3.0);
+  return sum;
+}
+
 // The largest difference of any channel, relative to b's largest channel.
 inline double largest_relative_difference(const std::vector<rgb>& a, const std::vector<rgb>& b) {
   double largest = 0.0, scale = 0.0;

@@ -80,8 +80,8 @@ TEST(Hierarchical, ManySmallCoplanarTrianglesReceiveWhatTheirPolygonDoes) {
   auto solver = make_radiosity_solver(s, mesh, hierarchical(1e-3));
   solve(*solver, 1e-9);
   const hierarchical_solver& h = *hierarchical_of(*solver);
-  double reflected = 0.0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) reflected += h.gathered.total[e].g * mesh.element_areas[e];
+  ASSERT_EQ(h.gathered.total.size(), mesh.vertex_count());
+  const double reflected = integral_over_elements(mesh, h.gathered.total).g;
   // What the floor as one polygon receives: Lambert's formula integrated
   // over it (midpoint rule on a 200 x 200 grid, far finer than needed).
   const double exitance = pi * 10.0;

@@ -49,26 +49,28 @@ TEST(Hierarchical, AClusterSendsWhatItsElementsFacingTheReceiverSend) {
     cluster_links += !source.oriented && source.lo.y >= 0.99 && source.hi.y <= 1.21;
   }
   EXPECT_GT(cluster_links, 100u);  // 162 of 1038
-  // Power the ceiling and the floor gather straight from the emitter, against Lambert's formula
-  // for the top face integrated over the ceiling (midpoint rule, 200 x 200).
-  double ceiling = 0.0, floor = 0.0;
-  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
-    const double y = h.hierarchy.tree.nodes[std::size_t(h.hierarchy.tree.leaf_of_element[e])].centroid.y;
-    const double power = h.gathered.direct[e].g / 0.5 * mesh.element_areas[e];  // rho x irradiance from emitters
-    if (y > 1.9) ceiling += power;
-    if (y < 0.1) floor += power;
+  // What the ceiling's and the floor's vertices gather straight from the
+  // emitter, against Lambert's formula for the top face at each.
+  const patch_mesh& solved = h.mesh();
+  double worst = 0.0, brightest = 0.0, ceiling = 0.0, exact = 0.0, floor = 0.0;
+  for (std::size_t v = 0; v < solved.vertex_count(); ++v) {
+    const vec3& p = solved.receive_points[v];
+    const double got = h.gathered.direct[v].g;  // rho x irradiance from emitters
+    if (p.y < 0.1) floor = std::max(floor, got);
+    if (p.y < 1.9) continue;
+    const double expected = 0.5 * pi * 10.0 * point_polygon_form_factor(p, solved.normals[v], top);
+    worst = std::max(worst, std::abs(got - expected));
+    brightest = std::max(brightest, expected);
+    ceiling += got;
+    exact += expected;
   }
-  double exact = 0.0;
-  const int n = 200;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const vec3 p(-2 + 4.0 * (i + 0.5) / n, 2.0, -2 + 4.0 * (j + 0.5) / n);
-      exact += point_polygon_form_factor(p, vec3(0, -1, 0), top) * 16.0 / (n * n);
-    }
-  exact *= pi * 10.0;
-  std::printf("cube's top face: ceiling %.4f W (exact %.4f), floor %.4f W\n", ceiling, exact, floor);
-  EXPECT_NEAR(ceiling / exact, 1.0, 0.05);  // measured 0.970
-  EXPECT_LT(floor, 1e-6 * exact);           // measured 0
+  std::printf("cube's top face: ceiling %.4f of exact, worst vertex off by %.4f of the brightest, floor %g\n",
+              ceiling / exact, worst / brightest, floor);
+  EXPECT_NEAR(ceiling / exact, 1.0, 0.02);  // measured 1.0099
+  // The far corners, where the cube is 1/150 of its brightest, are the
+  // worst: links from the cube's cluster to coarse parts of the ceiling.
+  EXPECT_LT(worst / brightest, 0.02);  // measured 0.0115
+  EXPECT_LT(floor, 1e-6 * exact);      // measured 0
 }
 
 }  // namespace
