@@ -255,6 +255,9 @@ void main() {
   if (!quotients || any(isnan(uv)) || any(isinf(uv))) uv = uv_s;
 #endif
 #endif
+  // Radiosities are >= 0, but next to a vertex at 0 (a block's foot) the
+  // weights' rounding can dip a hair below it.
+  vertex_radiance = max(vertex_radiance, vec3(0.0));
 #ifdef TEXTURED
   // Outside any divergent return, so that the derivatives are defined.
   if (texture_mode == 1) {

@@ -40,6 +40,8 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
       {"elements_meshed", meshed.element_count()},
       {"vertices", solved.vertex_count()},
       {"patches", solved.patch_count()},
+      {"contact_footprints", meshed.contact_footprints},
+      {"contact_area_removed", meshed.contact_area_removed},
       {"adaptive", settings.adaptive.enabled},
       {"refinement_passes", passes},
       {"patch_edge", mesher_params_for(settings, s).patch_edge},
@@ -98,7 +100,8 @@ void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
     std::fprintf(stderr, "warning: %s: %zu non-manifold face(s) kept with vertices of their own\n", s.source.c_str(),
                  mesh.nonmanifold_faces);
   if (mesh.uncut_overlaps)
-    std::fprintf(stderr, "warning: %s: %zu coplanar overlap(s) could not be cut out of the surface behind\n",
+    std::fprintf(stderr,
+                 "warning: %s: %zu coplanar overlap(s) or contact(s) could not be cut out of the surface behind\n",
                  s.source.c_str(), mesh.uncut_overlaps);
 }
 

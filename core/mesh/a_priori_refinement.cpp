@@ -76,8 +76,49 @@ std::vector<int> contact_marks(const patch_mesh& mesh, double min_edge) {
   // A surface's boundary edge lying on the inside of another surface's
   // element (not on that surface's own boundary: walls meeting at a corner
   // are not a contact) marks both elements. Points are sampled along the
-  // boundary edge at half the minimum edge.
+  // boundary edge at half the minimum edge. Where the mesher cut the
+  // ground under a solid out, the contact is its outline: a boundary edge
+  // along it marks its element (the ground's and the solid's alike).
   const auto uses = edge_uses(mesh);
+  std::vector<int> marks;
+  const double close = 1e-6 * mesh.scene_diagonal;
+  if (!mesh.contact_outline.empty()) {
+    std::unordered_map<std::uint64_t, std::vector<int>> outline_cells;
+    const double cell = std::max(mesh.max_edge, mesh.scene_diagonal / 64.0);
+    auto index = [&](double c) { return std::llround(std::floor(c / cell)); };
+    for (std::size_t i = 0; i < mesh.contact_outline.size(); ++i) {
+      const vec3 lo = glm::min(mesh.contact_outline[i][0], mesh.contact_outline[i][1]) - vec3(close);
+      const vec3 hi = glm::max(mesh.contact_outline[i][0], mesh.contact_outline[i][1]) + vec3(close);
+      for (long long x = index(lo.x); x <= index(hi.x); ++x)
+        for (long long y = index(lo.y); y <= index(hi.y); ++y)
+          for (long long z = index(lo.z); z <= index(hi.z); ++z)
+            outline_cells[element_grid::key(x, y, z)].push_back(int(i));
+    }
+    auto on_outline = [&](const vec3& p, const std::array<vec3, 2>& s) {
+      const vec3 d = s[1] - s[0];
+      const double t = std::clamp(glm::dot(p - s[0], d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
+      return glm::length(p - (s[0] + d * t)) < close;
+    };
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+      if (element_longest_edge(mesh, int(e)) <= min_edge) continue;
+      const glm::ivec3 t = mesh.elements[e];
+      for (int k = 0; k < 3; ++k) {
+        const vec3 pa = mesh.positions[t[k]], pb = mesh.positions[t[(k + 1) % 3]];
+        if (uses.at(edge_key(t[k], t[(k + 1) % 3])) != 1) continue;
+        const vec3 mid = 0.5 * (pa + pb);
+        const auto it = outline_cells.find(element_grid::key(index(mid.x), index(mid.y), index(mid.z)));
+        if (it == outline_cells.end()) continue;
+        bool along = false;
+        for (int i : it->second)
+          along = along || (on_outline(pa, mesh.contact_outline[std::size_t(i)]) &&
+                            on_outline(pb, mesh.contact_outline[std::size_t(i)]));
+        if (along) {
+          marks.push_back(int(e));
+          break;
+        }
+      }
+    }
+  }
   std::vector<bool> on_surface_boundary(mesh.vertex_count(), false);
   for (const glm::ivec3& t : mesh.elements)
     for (int k = 0; k < 3; ++k)
@@ -85,7 +126,6 @@ std::vector<int> contact_marks(const patch_mesh& mesh, double min_edge) {
         on_surface_boundary[t[k]] = on_surface_boundary[t[(k + 1) % 3]] = true;
   const double tolerance = 1e-6 * mesh.scene_diagonal;
   const element_grid grid(mesh, std::max(mesh.max_edge, mesh.scene_diagonal / 64.0), tolerance);
-  std::vector<int> marks;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const glm::ivec3 t = mesh.elements[e];
     for (int k = 0; k < 3; ++k) {

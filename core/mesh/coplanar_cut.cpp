@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include <clipper.hpp>
 #include <glm/geometric.hpp>
@@ -57,6 +59,70 @@ double smallest_angle(const int_point& a, const int_point& b, const int_point& c
     smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)));
   }
   return smallest;
+}
+
+// Whether d lies strictly inside the circle through a, b, c (counter-
+// clockwise). Exact: coordinates within +-2^29.
+bool in_circle(const int_point& a, const int_point& b, const int_point& c, const int_point& d) {
+  const __int128 adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y, cdx = c.x - d.x, cdy = c.y - d.y;
+  const __int128 det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) -
+                       (bdx * bdx + bdy * bdy) * (adx * cdy - cdx * ady) +
+                       (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+  return det > 0;
+}
+
+// Lawson's flips: an edge that is not constrained, between two triangles
+// whose union is convex, is flipped while the far corner of one lies in
+// the other's circumcircle. Ear clipping alone leaves slivers, which
+// longest-edge bisection keeps (it halves angles at worst).
+void make_delaunay(const std::vector<int_point>& points, const std::set<std::pair<int, int>>& constrained,
+                   std::vector<std::array<int, 3>>& triangles) {
+  std::map<std::pair<int, int>, std::vector<int>> by_edge;  // undirected edge -> triangles
+  auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  auto link = [&](int t) {
+    for (int k = 0; k < 3; ++k) by_edge[key(triangles[t][k], triangles[t][(k + 1) % 3])].push_back(t);
+  };
+  auto unlink = [&](int t) {
+    for (int k = 0; k < 3; ++k) {
+      auto& list = by_edge[key(triangles[t][k], triangles[t][(k + 1) % 3])];
+      list.erase(std::remove(list.begin(), list.end(), t), list.end());
+    }
+  };
+  for (int t = 0; t < int(triangles.size()); ++t) link(t);
+  std::vector<std::pair<int, int>> stack;
+  for (const auto& [edge, list] : by_edge) stack.push_back(edge);
+  std::size_t budget = 64 * triangles.size() * triangles.size() + 64;
+  while (!stack.empty() && budget-- > 0) {
+    const std::pair<int, int> edge = stack.back();
+    stack.pop_back();
+    if (constrained.count(edge)) continue;
+    const auto it = by_edge.find(edge);
+    if (it == by_edge.end() || it->second.size() != 2) continue;
+    const int t1 = it->second[0], t2 = it->second[1];
+    // t1 = (a, b, c) with edge a -> b; t2 has b -> a and its third corner d.
+    int a = -1, b = -1, c = -1, d = -1;
+    for (int k = 0; k < 3; ++k) {
+      const int p = triangles[t1][k], q = triangles[t1][(k + 1) % 3];
+      if (key(p, q) == edge) {
+        a = p;
+        b = q;
+        c = triangles[t1][(k + 2) % 3];
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+      if (triangles[t2][k] != a && triangles[t2][k] != b) d = triangles[t2][k];
+    if (a < 0 || d < 0 || c == d) continue;
+    const int_point &pa = points[a], &pb = points[b], &pc = points[c], &pd = points[d];
+    if (!in_circle(pa, pb, pc, pd)) continue;
+    if (orient(pa, pd, pc) <= 0 || orient(pd, pb, pc) <= 0) continue;  // not convex: no flip
+    unlink(t1);
+    unlink(t2);
+    triangles[t1] = {a, d, c};
+    triangles[t2] = {d, b, c};
+    link(t1);
+    link(t2);
+    for (const auto& e : {key(a, d), key(d, b), key(b, c), key(c, a)}) stack.push_back(e);
+  }
 }
 
 }  // namespace
@@ -110,19 +176,24 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
         if (!clear_of(pending[j])) return false;
       return true;
     };
+    // The nearest corner whose bridge is clear: corners by distance, so
+    // that a floor with many holes costs a few checks per hole.
     int best = -1;
-    double best_distance = INFINITY;
     const std::size_t n = ring.size();
+    std::vector<std::pair<double, int>> by_distance;
+    by_distance.reserve(n);
     for (std::size_t s = 0; s < n; ++s) {
       const int_point& v = points[ring[s]];
       if (v == h) continue;
-      const double distance = std::hypot(double(v.x - h.x), double(v.y - h.y));
-      if (distance >= best_distance) continue;
       if (!inside_wedge(points[ring[(s + n - 1) % n]], v, points[ring[(s + 1) % n]], h)) continue;
-      if (!bridge_is_clear(v)) continue;
-      best = int(s);
-      best_distance = distance;
+      by_distance.emplace_back(std::hypot(double(v.x - h.x), double(v.y - h.y)), int(s));
     }
+    std::sort(by_distance.begin(), by_distance.end());
+    for (const auto& [distance, s] : by_distance)
+      if (bridge_is_clear(points[ring[std::size_t(s)]])) {
+        best = s;
+        break;
+      }
     if (best < 0) return {};  // no bridge: not a valid polygon with holes
     std::vector<int> merged(ring.begin(), ring.begin() + best + 1);
     for (std::size_t i = 0; i <= hole.size(); ++i) merged.push_back(hole[(start + i) % hole.size()]);
@@ -193,6 +264,14 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
   }
   if (left == 3 && orient(points[ring[prev[cursor]]], points[ring[cursor]], points[ring[next[cursor]]]) > 0)
     triangles.push_back({ring[prev[cursor]], ring[cursor], ring[next[cursor]]});
+  // The polygon's and the holes' edges are kept; every other edge is
+  // flipped until the triangulation is constrained Delaunay.
+  std::set<std::pair<int, int>> constrained;
+  auto constrain = [&](int a, int b) { constrained.insert({std::min(a, b), std::max(a, b)}); };
+  for (std::size_t i = 0; i < outer.size(); ++i) constrain(int(i), int((i + 1) % outer.size()));
+  for (const std::vector<int>& hole : pending)
+    for (std::size_t i = 0; i < hole.size(); ++i) constrain(hole[i], hole[(i + 1) % hole.size()]);
+  make_delaunay(points, constrained, triangles);
   return triangles;
 }
 
@@ -388,17 +467,16 @@ double tree_area(const ClipperLib::PolyTree& tree) {
   return area;
 }
 
-// Replaces piece p's triangles in this plane with a triangulation of
-// `region`. False (nothing changed) if the region cannot be triangulated.
-bool replace_piece(triangle_mesh& m, const piece& p, const ClipperLib::PolyTree& region, const plane_frame& frame,
-                   const std::map<std::pair<long long, long long>, vec2>& cover_corners, std::vector<bool>& removed) {
+// Triangulates `region` (Clipper's rings, holes as children) into
+// `added`. False if some ring cannot be triangulated.
+bool triangulate_region(const ClipperLib::PolyTree& region, std::vector<std::array<int_point, 3>>& added) {
   auto to_points = [](const ClipperLib::Path& path, bool counter_clockwise) {
     std::vector<int_point> out;
     for (const ClipperLib::IntPoint& q : path) out.push_back({q.X, q.Y});
     if ((ClipperLib::Area(path) > 0.0) != counter_clockwise) std::reverse(out.begin(), out.end());
     return out;
   };
-  std::vector<std::array<int_point, 3>> added;
+  const std::size_t before = added.size();
   for (ClipperLib::PolyNode* node = region.GetFirst(); node; node = node->GetNext()) {
     if (node->IsHole() || node->Contour.size() < 3) continue;
     std::vector<int_point> all = to_points(node->Contour, true);
@@ -406,11 +484,21 @@ bool replace_piece(triangle_mesh& m, const piece& p, const ClipperLib::PolyTree&
     for (ClipperLib::PolyNode* child : node->Childs)
       if (child->Contour.size() >= 3) holes.push_back(to_points(child->Contour, false));
     const std::vector<std::array<int, 3>> triangles = triangulate_with_holes(all, holes);
-    if (triangles.empty()) return false;
+    if (triangles.empty()) {
+      added.resize(before);
+      return false;
+    }
     for (const auto& h : holes) all.insert(all.end(), h.begin(), h.end());
     for (const auto& t : triangles) added.push_back({all[t[0]], all[t[1]], all[t[2]]});
   }
+  return true;
+}
 
+// Replaces piece p's triangles in this plane with `added` (integer
+// corners in the plane's frame).
+void replace_with(triangle_mesh& m, const piece& p, const std::vector<std::array<int_point, 3>>& added,
+                  const plane_frame& frame, const std::map<std::pair<long long, long long>, vec2>& cover_corners,
+                  std::vector<bool>& removed) {
   // The piece's own corners keep their exact vertices, so that its boundary
   // still meets its other faces; points where the cover's outline crosses
   // are interpolated from the piece's triangle they lie deepest inside.
@@ -464,7 +552,32 @@ bool replace_piece(triangle_mesh& m, const piece& p, const ClipperLib::PolyTree&
     m.materials.push_back(p.material);
     removed.push_back(false);
   }
+}
+
+// Replaces piece p's triangles in this plane with a triangulation of
+// `region`. False (nothing changed) if the region cannot be triangulated.
+bool replace_piece(triangle_mesh& m, const piece& p, const ClipperLib::PolyTree& region, const plane_frame& frame,
+                   const std::map<std::pair<long long, long long>, vec2>& cover_corners, std::vector<bool>& removed) {
+  std::vector<std::array<int_point, 3>> added;
+  if (!triangulate_region(region, added)) return false;
+  replace_with(m, p, added, frame, cover_corners, removed);
   return true;
+}
+
+// Drops the triangles that replace_piece replaced.
+void drop_removed(std::vector<triangle_mesh>& tessellated, const std::vector<std::vector<bool>>& removed) {
+  for (std::size_t s = 0; s < tessellated.size(); ++s) {
+    triangle_mesh& m = tessellated[s];
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      if (!removed[s][t]) {
+        m.triangles[kept] = m.triangles[t];
+        m.materials[kept] = m.materials[t];
+        ++kept;
+      }
+    m.triangles.resize(kept);
+    m.materials.resize(kept);
+  }
 }
 
 }  // namespace
@@ -552,19 +665,493 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
         }
     }
   }
-  // Drop the replaced triangles.
-  for (std::size_t s = 0; s < tessellated.size(); ++s) {
-    triangle_mesh& m = tessellated[s];
-    std::size_t kept = 0;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t)
-      if (!removed[s][t]) {
-        m.triangles[kept] = m.triangles[t];
-        m.materials[kept] = m.materials[t];
-        ++kept;
+  drop_removed(tessellated, removed);
+  return stats;
+}
+
+namespace {
+
+// Distance along d from o to triangle (a, b, c) (Moller-Trumbore), or
+// infinity; `front` is whether d meets its front.
+double ray_hit(const vec3& o, const vec3& d, const vec3& a, const vec3& b, const vec3& c, bool& front) {
+  const vec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
+  const double det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-300) return INFINITY;
+  const vec3 t = o - a;
+  const double u = glm::dot(t, p) / det;
+  if (u < 0.0 || u > 1.0) return INFINITY;
+  const vec3 q = glm::cross(t, e1);
+  const double v = glm::dot(d, q) / det;
+  if (v < 0.0 || u + v > 1.0) return INFINITY;
+  const double distance = glm::dot(e2, q) / det;
+  front = det > 0.0;  // d runs against the counter-clockwise normal
+  return distance > 0.0 ? distance : INFINITY;
+}
+
+// Every triangle of the scene in a uniform grid of its bounding boxes, for
+// the triangles near a plane and those above a point.
+class triangle_grid {
+ public:
+  triangle_grid(const std::vector<triangle_mesh>& tessellated, const vec3& lo, const vec3& hi) : lo_(lo) {
+    std::size_t count = 0;
+    for (const triangle_mesh& m : tessellated) count += m.triangles.size();
+    const vec3 size = glm::max(hi - lo, vec3(1e-300));
+    // Four times the cube root of the triangle count along the largest
+    // side: furnished rooms are dense, and a plane's slab should meet few.
+    const double cells = std::clamp(4.0 * std::cbrt(double(count)), 1.0, 512.0);
+    cell_ = std::max({size.x, size.y, size.z}) / cells;
+    for (int k = 0; k < 3; ++k) dims_[k] = std::max(1, int(std::ceil(size[k] / cell_)));
+    for (std::size_t s = 0; s < tessellated.size(); ++s) {
+      const triangle_mesh& m = tessellated[s];
+      for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+        vec3 a(INFINITY), b(-INFINITY);
+        for (int k = 0; k < 3; ++k) {
+          a = glm::min(a, m.positions[m.triangles[t][k]]);
+          b = glm::max(b, m.positions[m.triangles[t][k]]);
+        }
+        const glm::ivec3 c0 = cell_of(a), c1 = cell_of(b);
+        const long long span = (long long)(c1.x - c0.x + 1) * (c1.y - c0.y + 1) * (c1.z - c0.z + 1);
+        const int id = int(refs_.size());
+        refs_.emplace_back(int(s), int(t));
+        if (span > (1 << 20)) {  // a flat layer of cells across the grid is fine; a solid block is not
+          large_.push_back(id);
+          continue;
+        }
+        for (int x = c0.x; x <= c1.x; ++x)
+          for (int y = c0.y; y <= c1.y; ++y)
+            for (int z = c0.z; z <= c1.z; ++z) cells_[key(x, y, z)].push_back(id);
       }
-    m.triangles.resize(kept);
-    m.materials.resize(kept);
+    }
+    stamp_.assign(refs_.size(), 0);
   }
+
+  // The triangles (surface, triangle) whose boxes may meet box [a, b],
+  // each once.
+  std::vector<std::pair<int, int>> near(const vec3& a, const vec3& b) const {
+    ++query_;
+    std::vector<std::pair<int, int>> out;
+    auto take = [&](int id) {
+      if (stamp_[std::size_t(id)] == query_) return;
+      stamp_[std::size_t(id)] = query_;
+      out.push_back(refs_[std::size_t(id)]);
+    };
+    for (int id : large_) take(id);
+    const glm::ivec3 c0 = cell_of(a), c1 = cell_of(b);
+    for (int x = c0.x; x <= c1.x; ++x)
+      for (int y = c0.y; y <= c1.y; ++y)
+        for (int z = c0.z; z <= c1.z; ++z)
+          if (auto it = cells_.find(key(x, y, z)); it != cells_.end())
+            for (int id : it->second) take(id);
+    return out;
+  }
+
+  // The nearest triangle along the ray from o in unit direction d: its
+  // distance (infinity if none) and whether the ray meets its front
+  // (faces within `tolerance` of the nearest count as one, behind winning).
+  // Walks the cells the ray passes (Amanatides & Woo), stopping past a hit.
+  double first_hit(const std::vector<triangle_mesh>& tessellated, const vec3& o, const vec3& d, double tolerance,
+                   bool& front) const {
+    ++query_;
+    double nearest = INFINITY;
+    front = true;
+    auto test = [&](int id) {
+      if (stamp_[std::size_t(id)] == query_) return;
+      stamp_[std::size_t(id)] = query_;
+      const auto [surface, t] = refs_[std::size_t(id)];
+      const triangle_mesh& m = tessellated[std::size_t(surface)];
+      const glm::ivec3 tri = m.triangles[std::size_t(t)];
+      bool faces = true;
+      const double distance = ray_hit(o, d, m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]], faces);
+      if (distance < nearest - tolerance) {
+        nearest = distance;
+        front = faces;
+      } else if (distance < nearest + tolerance) {
+        nearest = std::min(nearest, distance);
+        front = front && faces;
+      }
+    };
+    for (int id : large_) test(id);
+    glm::ivec3 c = cell_of(o);
+    glm::ivec3 step;
+    vec3 t_max, t_delta;
+    for (int k = 0; k < 3; ++k) {
+      step[k] = d[k] > 0.0 ? 1 : (d[k] < 0.0 ? -1 : 0);
+      const double boundary = lo_[k] + (c[k] + (step[k] > 0 ? 1 : 0)) * cell_;
+      t_max[k] = step[k] != 0 ? (boundary - o[k]) / d[k] : INFINITY;
+      t_delta[k] = step[k] != 0 ? cell_ / std::abs(d[k]) : INFINITY;
+    }
+    for (;;) {
+      if (auto it = cells_.find(key(c.x, c.y, c.z)); it != cells_.end())
+        for (int id : it->second) test(id);
+      const int k = t_max.x < t_max.y ? (t_max.x < t_max.z ? 0 : 2) : (t_max.y < t_max.z ? 1 : 2);
+      if (nearest + tolerance < t_max[k]) break;  // nothing farther can be nearer
+      c[k] += step[k];
+      if (step[k] == 0 || c[k] < 0 || c[k] >= dims_[k]) break;
+      t_max[k] += t_delta[k];
+    }
+    return nearest;
+  }
+
+ private:
+  glm::ivec3 cell_of(const vec3& p) const {
+    glm::ivec3 c;
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
+    return c;
+  }
+  long long key(int x, int y, int z) const { return (static_cast<long long>(x) * dims_[1] + y) * dims_[2] + z; }
+  vec3 lo_;
+  double cell_ = 1.0;
+  int dims_[3] = {1, 1, 1};
+  std::vector<std::pair<int, int>> refs_;  // by id: (surface, triangle)
+  std::unordered_map<long long, std::vector<int>> cells_;
+  std::vector<int> large_;
+  mutable std::vector<unsigned> stamp_;  // per id: the last query that took it
+  mutable unsigned query_ = 0;
+};
+
+// The point where edge (a, b) crosses height h along n (d: heights), the
+// same bits from either triangle that shares the edge.
+vec3 crossing(vec3 a, vec3 b, double da, double db, double h) {
+  if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) {
+    std::swap(a, b);
+    std::swap(da, db);
+  }
+  return a + (b - a) * ((h - da) / (db - da));
+}
+
+// A plane's triangles in pieces that touch (share a corner): the table
+// tops of a building at one height are one plane but many parts, each
+// looked at over its own extent.
+std::vector<plane_group> connected_parts(const std::vector<triangle_mesh>& tessellated, const plane_group& plane) {
+  std::vector<int> parent(plane.triangles.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = int(i);
+  auto find = [&](int i) {
+    while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
+    return i;
+  };
+  std::map<std::tuple<double, double, double>, int> first_at;
+  for (std::size_t i = 0; i < plane.triangles.size(); ++i) {
+    const triangle_mesh& m = tessellated[std::size_t(plane.triangles[i].surface)];
+    for (int k = 0; k < 3; ++k) {
+      const vec3& p = m.positions[m.triangles[std::size_t(plane.triangles[i].triangle)][k]];
+      const auto [it, fresh] = first_at.try_emplace({p.x, p.y, p.z}, int(i));
+      if (!fresh) parent[std::size_t(find(int(i)))] = find(it->second);
+    }
+  }
+  std::map<int, std::size_t> part_of;
+  std::vector<plane_group> out;
+  for (std::size_t i = 0; i < plane.triangles.size(); ++i) {
+    const auto [it, fresh] = part_of.try_emplace(find(int(i)), out.size());
+    if (fresh) out.push_back({plane.normal, {}});
+    out[it->second].triangles.push_back(plane.triangles[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
+                                      double scene_diagonal, double smallest_part) {
+  contact_cut_stats stats;
+  const double tolerance = coplanar_relative_tolerance * scene_diagonal;
+  const double lift = contact_lift * scene_diagonal;
+  vec3 lo(INFINITY), hi(-INFINITY);
+  for (const triangle_mesh& m : tessellated)
+    for (const vec3& p : m.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  if (!(lo.x <= hi.x)) return stats;
+  const vec3 centre = 0.5 * (lo + hi);
+  const double extent = glm::length(hi - lo);
+  const triangle_grid grid(tessellated, lo, hi);
+  std::vector<std::vector<bool>> removed(tessellated.size());
+  for (std::size_t s = 0; s < tessellated.size(); ++s) removed[s].assign(tessellated[s].triangles.size(), false);
+
+  std::vector<plane_group> parts;
+  for (const plane_group& whole : plane_groups(tessellated, flat, tolerance)) {
+    std::vector<plane_group> split = connected_parts(tessellated, whole);
+    parts.insert(parts.end(), std::make_move_iterator(split.begin()), std::make_move_iterator(split.end()));
+  }
+  for (const plane_group& plane : parts) {
+    const vec3 n = plane.normal;
+    double front = -INFINITY;
+    vec3 a(INFINITY), b(-INFINITY);
+    for (const triangle_ref& r : plane.triangles) {
+      const triangle_mesh& m = tessellated[r.surface];
+      front = std::max(front, r.offset);
+      for (int k = 0; k < 3; ++k) {
+        a = glm::min(a, m.positions[m.triangles[r.triangle][k]]);
+        b = glm::max(b, m.positions[m.triangles[r.triangle][k]]);
+      }
+    }
+    // A part smaller than a tenth of an element is a fraction of one:
+    // not worth the search (furnished rooms have half a million of them).
+    if (glm::length(b - a) < smallest_part) continue;
+    const double h = front + lift;
+    const plane_frame frame(n, centre, extent);
+    // The triangles that cross the lifted plane within `reach` of the
+    // pieces (along an axis the plane faces, only the slab around it).
+    auto crossing_near = [&](double reach) {
+      vec3 query_lo = a - vec3(reach), query_hi = b + vec3(reach);
+      for (int k = 0; k < 3; ++k)
+        if (std::abs(n[k]) > 1.0 - 1e-9) query_lo[k] = query_hi[k] = h * n[k];
+      query_lo -= vec3(lift);
+      query_hi += vec3(lift);
+      std::vector<std::pair<int, int>> out = grid.near(query_lo, query_hi);
+      std::erase_if(out, [&](const std::pair<int, int>& ref) {
+        const triangle_mesh& m = tessellated[std::size_t(ref.first)];
+        const glm::ivec3 tri = m.triangles[std::size_t(ref.second)];
+        double lo_d = INFINITY, hi_d = -INFINITY;
+        vec3 lo_p(INFINITY), hi_p(-INFINITY);
+        for (int k = 0; k < 3; ++k) {
+          const double d = glm::dot(n, m.positions[tri[k]]);
+          lo_d = std::min(lo_d, d);
+          hi_d = std::max(hi_d, d);
+          lo_p = glm::min(lo_p, m.positions[tri[k]]);
+          hi_p = glm::max(hi_p, m.positions[tri[k]]);
+        }
+        const bool in_box =
+            glm::all(glm::lessThanEqual(lo_p, query_hi)) && glm::all(glm::lessThanEqual(query_lo, hi_p));
+        return !(lo_d < h && hi_d > h && in_box);
+      });
+      return out;
+    };
+    // Fewer than three triangles cross over the pieces themselves: no loop
+    // stands on them (most planes: the faces of furniture, which the floor
+    // alone crosses).
+    if (crossing_near(2.0 * lift).size() < 3) continue;
+    std::map<std::pair<long long, long long>, vec2> exact_points;
+    ClipperLib::Paths cover;
+    bool open = false;
+    // What stands on the plane, cut at the lifted height: a directed
+    // segment per triangle that crosses it, with the solid's inside on its
+    // left seen from the front (outward-facing solids give counter-clockwise
+    // loops; the room's inward-facing walls, clockwise ones).
+    auto find_cover = [&](double reach) {
+      std::multimap<std::pair<long long, long long>, std::size_t> starting;
+      std::vector<std::array<ClipperLib::IntPoint, 2>> segments;
+      const std::vector<std::pair<int, int>> candidates = crossing_near(reach);
+      for (const auto& [surface, t] : candidates) {
+        const triangle_mesh& m = tessellated[std::size_t(surface)];
+        const glm::ivec3 tri = m.triangles[std::size_t(t)];
+        double d[3];
+        for (int k = 0; k < 3; ++k) d[k] = glm::dot(n, m.positions[tri[k]]);
+        if (!(std::min({d[0], d[1], d[2]}) < h && std::max({d[0], d[1], d[2]}) > h)) continue;
+        std::vector<vec3> points;
+        for (int k = 0; k < 3; ++k) {
+          const int j = (k + 1) % 3;
+          if ((d[k] >= h) != (d[j] >= h))
+            points.push_back(crossing(m.positions[tri[k]], m.positions[tri[j]], d[k], d[j], h));
+        }
+        if (points.size() != 2) continue;
+        const vec3 along = glm::cross(n, triangle_cross(m, t));
+        if (glm::dot(points[1] - points[0], along) < 0.0) std::swap(points[0], points[1]);
+        const ClipperLib::IntPoint p0 = frame.project(points[0]), p1 = frame.project(points[1]);
+        if (p0 == p1) continue;
+        exact_points.try_emplace({p0.X, p0.Y}, frame.exact(points[0]));
+        exact_points.try_emplace({p1.X, p1.Y}, frame.exact(points[1]));
+        starting.emplace(std::make_pair(p0.X, p0.Y), segments.size());
+        segments.push_back({p0, p1});
+      }
+      if (segments.size() < 3) return;
+      // Closed loops, counter-clockwise, whose inside is closed above (the
+      // first thing straight up from inside is the back of a face): the
+      // region under a solid, which no light reaches and no eye sees.
+      std::vector<bool> used(segments.size(), false);
+      for (std::size_t first = 0; first < segments.size(); ++first) {
+        if (used[first]) continue;
+        ClipperLib::Path loop;
+        std::size_t at = first;
+        bool closed = false;
+        while (true) {
+          used[at] = true;
+          loop.push_back(segments[at][0]);
+          const ClipperLib::IntPoint end = segments[at][1];
+          if (end == segments[first][0]) {
+            closed = true;
+            break;
+          }
+          // Where solids touch, several segments leave one point: the one
+          // turning most to the left keeps to the boundary of one solid, the
+          // same whatever order the segments came in.
+          std::size_t next = segments.size();
+          double best_turn = -INFINITY;
+          const double in_x = double(end.X - segments[at][0].X), in_y = double(end.Y - segments[at][0].Y);
+          for (auto [it, stop] = starting.equal_range({end.X, end.Y}); it != stop; ++it) {
+            if (used[it->second]) continue;
+            const double out_x = double(segments[it->second][1].X - end.X),
+                         out_y = double(segments[it->second][1].Y - end.Y);
+            const double turn = std::atan2(in_x * out_y - in_y * out_x, in_x * out_x + in_y * out_y);
+            if (turn > best_turn || (turn == best_turn && it->second < next)) {
+              best_turn = turn;
+              next = it->second;
+            }
+          }
+          if (next == segments.size()) {
+            open = true;
+            break;
+          }
+          at = next;
+        }
+        // A quad face split by a diagonal crosses the plane twice along one
+        // line: the point in between goes (it would leave slivers). Straight
+        // means within 2 integer units of the line through the neighbours.
+        for (std::size_t i = 0; closed && loop.size() > 3 && i < loop.size();) {
+          const ClipperLib::IntPoint& p = loop[(i + loop.size() - 1) % loop.size()];
+          const ClipperLib::IntPoint& q = loop[(i + 1) % loop.size()];
+          const double dx = double(q.X - p.X), dy = double(q.Y - p.Y);
+          const double cross = dx * double(loop[i].Y - p.Y) - dy * double(loop[i].X - p.X);
+          if (std::abs(cross) <= 2.0 * std::hypot(dx, dy))
+            loop.erase(loop.begin() + std::ptrdiff_t(i));
+          else
+            ++i;
+        }
+        if (!closed || loop.size() < 3 || !(ClipperLib::Area(loop) > 0.0)) continue;
+        std::vector<int_point> ring;
+        for (const ClipperLib::IntPoint& q : loop) ring.push_back({q.X, q.Y});
+        const std::vector<std::array<int, 3>> ears = triangulate_with_holes(ring, {});
+        if (ears.empty()) continue;
+        const vec2 inside =
+            (frame.plane_point(loop[std::size_t(ears[0][0])]) + frame.plane_point(loop[std::size_t(ears[0][1])]) +
+             frame.plane_point(loop[std::size_t(ears[0][2])])) /
+            3.0;
+        const vec3 o = frame.origin + inside.x * frame.e1 + inside.y * frame.e2 + n * (h - glm::dot(n, frame.origin));
+        bool nearest_front = true;
+        const double nearest = grid.first_hit(tessellated, o, n, tolerance, nearest_front);
+        if (nearest == INFINITY || nearest_front) continue;
+        cover.push_back(std::move(loop));
+      }
+    };
+    // As far again as the part reaches: a solid that overhangs the part by
+    // more than that (a long table top over its legs' tops) leaves open
+    // chains, and cuts nothing there.
+    find_cover(std::max(glm::length(b - a), 2.0 * lift));
+    if (cover.empty()) continue;
+    // Cut the covered ground out of every piece of the plane, triangle by
+    // triangle with the loops over it: one polygon with thousands of holes
+    // (every room's floor under its furniture) would cost far more.
+    bool cut_any = false;
+    std::vector<ClipperLib::IntRect> loop_boxes;
+    for (const ClipperLib::Path& loop : cover) {
+      ClipperLib::IntRect r{loop[0].X, loop[0].Y, loop[0].X, loop[0].Y};
+      for (const ClipperLib::IntPoint& q : loop) {
+        r.left = std::min(r.left, q.X);
+        r.top = std::min(r.top, q.Y);
+        r.right = std::max(r.right, q.X);
+        r.bottom = std::max(r.bottom, q.Y);
+      }
+      loop_boxes.push_back(r);
+    }
+    // The loops' boxes in a grid of about one loop per cell.
+    ClipperLib::IntRect all = loop_boxes[0];
+    for (const ClipperLib::IntRect& r : loop_boxes) {
+      all.left = std::min(all.left, r.left);
+      all.top = std::min(all.top, r.top);
+      all.right = std::max(all.right, r.right);
+      all.bottom = std::max(all.bottom, r.bottom);
+    }
+    const double side = std::max<double>({double(all.right - all.left), double(all.bottom - all.top), 1.0}) /
+                        std::max(1.0, std::sqrt(double(cover.size())));
+    auto cell = [&](long long v, long long from) { return (long long)(std::floor(double(v - from) / side)); };
+    std::unordered_map<long long, std::vector<int>> loop_cells;
+    auto cell_key = [](long long x, long long y) { return (x << 32) ^ (y & 0xffffffffLL); };
+    for (std::size_t l = 0; l < loop_boxes.size(); ++l)
+      for (long long x = cell(loop_boxes[l].left, all.left); x <= cell(loop_boxes[l].right, all.left); ++x)
+        for (long long y = cell(loop_boxes[l].top, all.top); y <= cell(loop_boxes[l].bottom, all.top); ++y)
+          loop_cells[cell_key(x, y)].push_back(int(l));
+    std::vector<unsigned> seen(cover.size(), 0);
+    unsigned query = 0;
+    std::map<std::pair<int, int>, piece> by_piece;
+    for (const triangle_ref& r : plane.triangles) {
+      piece& p = by_piece[{r.surface, tessellated[r.surface].materials[r.triangle]}];
+      p.surface = r.surface;
+      p.material = tessellated[r.surface].materials[r.triangle];
+      p.triangles.push_back(r.triangle);
+    }
+    for (auto& [key, p] : by_piece) {
+      triangle_mesh& m = tessellated[p.surface];
+      piece affected = p;
+      affected.triangles.clear();
+      std::vector<std::array<int_point, 3>> added;
+      double old_area = 0.0;
+      for (int t : p.triangles) {
+        const ClipperLib::Paths own = piece_paths(m, {t}, frame);
+        if (own.empty()) continue;
+        ClipperLib::IntRect box{own[0][0].X, own[0][0].Y, own[0][0].X, own[0][0].Y};
+        for (const ClipperLib::IntPoint& q : own[0]) {
+          box.left = std::min(box.left, q.X);
+          box.top = std::min(box.top, q.Y);
+          box.right = std::max(box.right, q.X);
+          box.bottom = std::max(box.bottom, q.Y);
+        }
+        ++query;
+        ClipperLib::Paths over;
+        for (long long x = std::max(cell(box.left, all.left), 0LL); x <= cell(box.right, all.left); ++x)
+          for (long long y = std::max(cell(box.top, all.top), 0LL); y <= cell(box.bottom, all.top); ++y) {
+            const auto it = loop_cells.find(cell_key(x, y));
+            if (it == loop_cells.end()) continue;
+            for (int l : it->second) {
+              if (seen[std::size_t(l)] == query) continue;
+              seen[std::size_t(l)] = query;
+              const ClipperLib::IntRect& lb = loop_boxes[std::size_t(l)];
+              if (lb.left < box.right && lb.right > box.left && lb.top < box.bottom && lb.bottom > box.top)
+                over.push_back(cover[std::size_t(l)]);
+            }
+          }
+        if (over.empty()) continue;
+        ClipperLib::PolyTree after;
+        ClipperLib::Clipper cut;
+        auto difference = [&](bool strictly_simple) {
+          cut.Clear();
+          cut.PreserveCollinear(true);
+          cut.StrictlySimple(strictly_simple);
+          cut.AddPaths(own, ClipperLib::ptSubject, true);
+          cut.AddPaths(over, ClipperLib::ptClip, true);
+          cut.Execute(ClipperLib::ctDifference, after, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        };
+        // Not strictly simple: Clipper's fix-up of touching rings is
+        // quadratic in their number; asked for only where the
+        // triangulation of the difference fails.
+        difference(false);
+        const double area_before = std::abs(ClipperLib::Area(own[0])), area_after = tree_area(after);
+        if (!(area_before - area_after > 1e-9 * area_before)) continue;
+        if (area_after > 0.0 && !triangulate_region(after, added)) {
+          difference(true);
+          if (!triangulate_region(after, added)) {
+            ++stats.pieces_left_uncut;
+            continue;
+          }
+        }
+        old_area += 0.5 * glm::length(triangle_cross(m, t));
+        affected.triangles.push_back(t);  // wholly under solids: replaced by nothing
+      }
+      if (affected.triangles.empty()) continue;
+      const std::size_t first_new = m.triangles.size();
+      replace_with(m, affected, added, frame, exact_points, removed[p.surface]);
+      double new_area = 0.0;
+      for (std::size_t t = first_new; t < m.triangles.size(); ++t)
+        new_area += 0.5 * glm::length(triangle_cross(m, int(t)));
+      ++stats.pieces_cut;
+      stats.area_removed += old_area - new_area;
+      cut_any = true;
+    }
+    if (!cut_any) continue;
+    stats.footprints += cover.size();
+    const double down = front - glm::dot(n, frame.origin);
+    for (const ClipperLib::Path& loop : cover)
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        std::array<vec3, 2> edge;
+        for (int k = 0; k < 2; ++k) {
+          const ClipperLib::IntPoint& q = loop[(i + std::size_t(k)) % loop.size()];
+          const auto exact = exact_points.find({q.X, q.Y});
+          const vec2 x = exact != exact_points.end() ? exact->second : frame.plane_point(q);
+          edge[std::size_t(k)] = frame.origin + x.x * frame.e1 + x.y * frame.e2 + n * down;
+        }
+        stats.outline.push_back(edge);
+      }
+  }
+  drop_removed(tessellated, removed);
   return stats;
 }
 

@@ -47,10 +47,52 @@ struct coplanar_cut_stats {
 coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
                                          const std::vector<material>& materials, double scene_diagonal);
 
+// Contacts: a solid standing on a flat surface (a box on a floor, a table
+// leg on a rug) hides the ground under it, which no light reaches and no
+// eye sees. Left in the mesh, that ground takes its share of the light
+// that reaches the elements around it and keeps it: a coarse link's
+// irradiance is spread over all the elements under its receiver, hidden
+// ones included, and what they reflect is blocked. The ground under
+// solids is cut out along the contact outline, so no element straddles
+// the contact and no hidden vertex enters the interpolation.
+//
+// The outline is where the solid's faces cross the plane lifted by
+// contact_lift of the scene's diagonal (above the coplanar tolerance): each
+// crossing triangle gives a segment with the solid's inside on its left,
+// and the segments are chained into loops. A counter-clockwise loop (an
+// outward-facing solid's; the room's walls give clockwise ones) whose
+// inside is closed above (straight up from inside, the first face is met
+// from behind) is cut out of every piece of the plane. A solid that does
+// not reach down to the lifted plane (a box 2 cm up in a 10 m room) is not
+// in contact and cuts nothing; an open tube cuts nothing either. The
+// search looks as far again as each connected part of a plane reaches: a
+// solid that overhangs a part by more (a table top over its legs' tops)
+// leaves its loop open there and cuts nothing.
+inline constexpr double contact_lift = 1e-3;
+
+struct contact_cut_stats {
+  std::size_t footprints = 0;                // loops cut out (counted in the planes where they cut something)
+  std::size_t pieces_cut = 0;                // (surface, material) pieces that lost area
+  double area_removed = 0.0;                 // scene units squared
+  std::size_t pieces_left_uncut = 0;         // pieces whose remainder could not be triangulated: left whole
+  std::vector<std::array<vec3, 2>> outline;  // the loops' edges, in the plane cut
+};
+
+// Cuts the ground under solids out of the triangles of flat surfaces, in
+// place (tessellated and flat as for cut_coplanar_overlaps; every surface,
+// flat or curved, can stand on them).
+// Connected parts of a plane whose box's diagonal is below `smallest_part`
+// are left alone (the mesher passes a tenth of its element size).
+contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
+                                      double scene_diagonal, double smallest_part);
+
 // Triangulates a simple polygon with holes, given as integer points (exact
 // orientation tests): `outer` counter-clockwise, each hole clockwise, none
 // touching another. Returns corner triples, counter-clockwise, indexing the
-// concatenation of outer and the holes in order. Exposed for tests.
+// concatenation of outer and the holes in order: ear clipping, then
+// Lawson's flips to a constrained Delaunay triangulation (the polygon's and
+// the holes' edges kept), which has no slivers the points do not force.
+// Exposed for tests.
 struct int_point {
   long long x = 0, y = 0;
   bool operator==(const int_point&) const = default;

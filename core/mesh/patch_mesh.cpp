@@ -268,6 +268,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     flat.push_back(std::holds_alternative<polygon_mesh>(surf.geometry));
   }
   const coplanar_cut_stats cuts = cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
+  const contact_cut_stats contacts = cut_buried_contacts(tessellated, flat, glm::length(b.max - b.min), 0.1 * max_edge);
   working_mesh w;
   std::size_t nonmanifold = 0;
   // OpenMesh prints "complex edge" for every face it refuses; add_surface
@@ -326,7 +327,10 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
     pm.patch_areas.push_back(0.5 * glm::length(cross));
   }
   pm.nonmanifold_faces = nonmanifold;
-  pm.uncut_overlaps = cuts.pieces_left_uncut;
+  pm.uncut_overlaps = cuts.pieces_left_uncut + contacts.pieces_left_uncut;
+  pm.contact_footprints = contacts.footprints;
+  pm.contact_area_removed = contacts.area_removed;
+  pm.contact_outline = contacts.outline;
   for (double min_edge : {params.a_priori_min_edge, params.solver_min_edge})
     if (min_edge > 0.0 && min_edge < max_edge / 256.0) {
       error = "min edge " + std::to_string(min_edge) + " is below max edge / 256 (" + std::to_string(max_edge / 256.0) +
@@ -490,6 +494,9 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   out.max_edge = mesh.max_edge;
   out.nonmanifold_faces = mesh.nonmanifold_faces;
   out.uncut_overlaps = mesh.uncut_overlaps;
+  out.contact_footprints = mesh.contact_footprints;
+  out.contact_area_removed = mesh.contact_area_removed;
+  out.contact_outline = mesh.contact_outline;
   out.positions = std::move(mesh.positions);
   out.normals = std::move(mesh.normals);
   out.receive_points = std::move(mesh.receive_points);

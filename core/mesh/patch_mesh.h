@@ -51,6 +51,11 @@ struct patch_mesh {
   double max_edge = 0.0;              // the element size it was built for
   std::size_t nonmanifold_faces = 0;  // faces kept with vertices of their own (bad input topology)
   std::size_t uncut_overlaps = 0;     // coplanar overlaps that could not be cut (coplanar_cut.h): they z-fight
+  // Ground under solids cut out (coplanar_cut.h): how many loops, their
+  // area, and their edges (where the solids stand: contacts).
+  std::size_t contact_footprints = 0;
+  double contact_area_removed = 0.0;
+  std::vector<std::array<vec3, 2>> contact_outline;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t element_count() const { return elements.size(); }

@@ -35,10 +35,12 @@ TEST(SolverWorker, SolvesToTheCriterionAndPublishesEveryStep) {
   EXPECT_TRUE(view->converged);
   EXPECT_FALSE(view->running);
   EXPECT_LE(view->solution->stats.remaining, 0.01);
-  // One history point per shot, unshot falling.
+  // One history point per shot, unshot falling (a shot may add up to a
+  // few tenths of a percent: vertex-sampled form factors at the blocks'
+  // feet, Radiosity.UnshotFractionFallsBarVertexSampling).
   EXPECT_EQ(view->history.size(), view->solution->stats.steps);
   for (std::size_t i = 1; i < view->history.size(); ++i)
-    EXPECT_LE(view->history[i].remaining, view->history[i - 1].remaining + 1e-12);
+    EXPECT_LE(view->history[i].remaining, view->history[i - 1].remaining * (1.0 + 1e-2));
   EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
 }
 

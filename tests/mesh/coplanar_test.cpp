@@ -3,12 +3,14 @@
 // under) an uncut ceiling, through the mesher and the ray scene.
 #include <cmath>
 #include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
 #include "cornell_files.h"
 #include "mesh/coplanar_cut.h"
 #include "mesh/patch_mesh.h"
+#include "mesh_builders.h"
 #include "scene/camera_math.h"
 #include "scene/framing.h"
 #include "scene/scene_info.h"
@@ -59,6 +61,48 @@ TEST(CoplanarCut, TriangulatesTwoHolesAndStraightCorners) {
   const std::vector<std::vector<int_point>> holes = {{{2, 2}, {2, 4}, {4, 4}, {4, 2}},
                                                      {{12, 3}, {12, 7}, {18, 7}, {18, 3}}};
   expect_tiles(outer, holes, 2 * (300 - 4 - 24));
+}
+
+TEST(CoplanarCut, TriangulationIsConstrainedDelaunay) {
+  // A floor with a row of footprints: ear clipping alone left fans of
+  // slivers from the holes' corners across the floor. Every edge that is
+  // not the polygon's or a hole's must pass the empty-circle test.
+  const std::vector<int_point> outer = {{0, 0}, {1000, 0}, {1000, 400}, {0, 400}};
+  std::vector<std::vector<int_point>> holes;
+  for (int i = 0; i < 6; ++i) {
+    const long long x = 60 + 150 * i, y = 150 + 20 * (i % 3);
+    holes.push_back({{x, y}, {x, y + 90}, {x + 70, y + 90}, {x + 70, y}});
+  }
+  const auto triangles = triangulate_with_holes(outer, holes);
+  std::vector<int_point> all = outer;
+  for (const auto& h : holes) all.insert(all.end(), h.begin(), h.end());
+  std::set<std::pair<int, int>> constrained;
+  auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for (int i = 0; i < 4; ++i) constrained.insert(key(i, (i + 1) % 4));
+  for (int h = 0; h < 6; ++h)
+    for (int i = 0; i < 4; ++i) constrained.insert(key(4 + 4 * h + i, 4 + 4 * h + (i + 1) % 4));
+  std::map<std::pair<int, int>, std::vector<int>> by_edge;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) by_edge[key(triangles[t][k], triangles[t][(k + 1) % 3])].push_back(int(t));
+  int checked = 0;
+  for (const auto& [edge, list] : by_edge) {
+    if (constrained.count(edge) || list.size() != 2) continue;
+    const auto& t = triangles[std::size_t(list[0])];
+    int far = -1;
+    for (int k : triangles[std::size_t(list[1])])
+      if (k != edge.first && k != edge.second) far = k;
+    // In-circle determinant, in long double: coordinates are small here.
+    const int_point a = all[t[0]], b = all[t[1]], c = all[t[2]], d = all[std::size_t(far)];
+    const long double adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y, cdx = c.x - d.x,
+                      cdy = c.y - d.y;
+    const long double det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) -
+                            (bdx * bdx + bdy * bdy) * (adx * cdy - cdx * ady) +
+                            (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+    EXPECT_LE(det, 0.0L) << "edge " << edge.first << "-" << edge.second;
+    ++checked;
+  }
+  EXPECT_GT(checked, 20);
+  expect_tiles(outer, holes, 2 * (1000 * 400 - 6 * 70 * 90));
 }
 
 scene load_official(const scratch_dir& dir, const std::string& light_y) {
@@ -211,6 +255,134 @@ TEST(CoplanarCut, SurfacesFartherApartThanTheToleranceStayWhole) {
   EXPECT_EQ(cut(s, far).surfaces_cut, 0u);
   EXPECT_NEAR(area(far[surface_named(s, "ceiling")]), 556.0 * 559.2, 1e-6);
   EXPECT_EQ(cut(load_official(dir, "548.5"), near).surfaces_cut, 1u);
+}
+
+// ---- contacts: the ground under solids ----
+
+// An axis-aligned box [lo, hi] with outward faces, as a solid; without its
+// bottom or top face when asked (open boxes and tubes).
+void add_solid_box(scene& s, vec3 lo, vec3 hi, int material, bool bottom = true, bool top = true) {
+  const vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                     {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  // Counter-clockwise seen from outside.
+  const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+  for (int f = 0; f < 6; ++f) {
+    if ((f == 4 && !bottom) || (f == 5 && !top)) continue;
+    test_support::add_polygon(s, {c[faces[f][0]], c[faces[f][1]], c[faces[f][2]], c[faces[f][3]]}, material);
+  }
+}
+
+// A 4 x 4 floor facing up at y = 0 under a lamp, and nothing else yet.
+scene floor_under_a_lamp() {
+  scene s;
+  const int lamp = test_support::add_material(s, rgb(0.0), rgb(1.0));
+  test_support::add_material(s, rgb(0.5));
+  test_support::add_polygon(s, {{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}, 1, "floor");
+  test_support::add_polygon(s, {{-0.5, 3, -0.5}, {0.5, 3, -0.5}, {0.5, 3, 0.5}, {-0.5, 3, 0.5}}, lamp, "lamp");
+  return s;
+}
+
+struct floor_cut {
+  contact_cut_stats stats;
+  double floor_area = 0.0;
+  patch_mesh mesh;
+};
+
+floor_cut cut_floor(const scene& s) {
+  floor_cut out;
+  std::vector<triangle_mesh> tessellated;
+  std::vector<bool> flat;
+  for (const surface& surf : s.surfaces) {
+    tessellated.push_back(tessellate(surf, 1.0));
+    flat.push_back(std::holds_alternative<polygon_mesh>(surf.geometry));
+  }
+  const bounds3 b = scene_bounds(s);
+  out.stats = cut_buried_contacts(tessellated, flat, glm::length(b.max - b.min), 0.025);
+  out.floor_area = area(tessellated[0]);
+  out.mesh = test_support::mesh_of(s, 0.25);
+  return out;
+}
+
+// Whether the patch mesh's floor has an element whose centre lies in the
+// rectangle [x0, x1] x [z0, z1], or misses a vertex at one of its corners.
+bool floor_covers(const patch_mesh& m, double x0, double x1, double z0, double z1) {
+  for (std::size_t e = 0; e < m.element_count(); ++e) {
+    if (m.element_surfaces[e] != 0) continue;
+    vec3 c(0.0);
+    for (int k = 0; k < 3; ++k) c += m.positions[m.elements[e][k]] / 3.0;
+    if (c.x > x0 && c.x < x1 && c.z > z0 && c.z < z1) return true;
+  }
+  return false;
+}
+int floor_vertices_at(const patch_mesh& m, double x, double z) {
+  int n = 0;
+  for (std::size_t v = 0; v < m.vertex_count(); ++v)
+    n += m.vertex_surfaces[v] == 0 && glm::length(m.positions[v] - vec3(x, 0, z)) < 1e-9 ? 1 : 0;
+  return n;
+}
+
+TEST(ContactCut, ABoxOnTheFloorTakesItsFootprintOut) {
+  for (const bool bottom : {true, false}) {  // a closed solid, or an open box turned over
+    scene s = floor_under_a_lamp();
+    add_solid_box(s, {-0.5, 0, -0.3}, {0.5, 0.8, 0.3}, 1, bottom);
+    const floor_cut cut = cut_floor(s);
+    EXPECT_EQ(cut.stats.footprints, 1u) << "bottom " << bottom;
+    EXPECT_NEAR(cut.floor_area, 16.0 - 0.6, 1e-9) << "bottom " << bottom;
+    EXPECT_NEAR(cut.mesh.contact_area_removed, 0.6, 1e-9);
+    EXPECT_FALSE(floor_covers(cut.mesh, -0.5, 0.5, -0.3, 0.3));
+    for (const double x : {-0.5, 0.5})
+      for (const double z : {-0.3, 0.3}) EXPECT_EQ(floor_vertices_at(cut.mesh, x, z), 1) << x << ", " << z;
+  }
+}
+
+TEST(ContactCut, WhatDoesNotTouchOrIsOpenAboveCutsNothing) {
+  // Lifted by 1 cm (the lift is 1e-3 of the 6.4 m diagonal): not in contact.
+  scene lifted = floor_under_a_lamp();
+  add_solid_box(lifted, {-0.5, 0.01, -0.3}, {0.5, 0.8, 0.3}, 1);
+  EXPECT_EQ(cut_floor(lifted).stats.footprints, 0u);
+  EXPECT_NEAR(cut_floor(lifted).floor_area, 16.0, 1e-9);
+  // A tube open at both ends: the floor inside it is seen from above.
+  scene tube = floor_under_a_lamp();
+  add_solid_box(tube, {-0.5, 0, -0.3}, {0.5, 0.8, 0.3}, 1, false, false);
+  EXPECT_EQ(cut_floor(tube).stats.footprints, 0u);
+  // A box standing beside the floor (outside its outline) leaves it whole.
+  scene beside = floor_under_a_lamp();
+  add_solid_box(beside, {2.5, 0, -0.3}, {3.5, 0.8, 0.3}, 1);
+  EXPECT_NEAR(cut_floor(beside).floor_area, 16.0, 1e-9);
+}
+
+TEST(ContactCut, ATableCutsItsLegsNotTheGroundUnderItsTop) {
+  scene s = floor_under_a_lamp();
+  add_solid_box(s, {-1.0, 0.7, -0.6}, {1.0, 0.75, 0.6}, 1);  // the top
+  for (const double x : {-0.95, 0.85})
+    for (const double z : {-0.55, 0.45}) add_solid_box(s, {x, 0, z}, {x + 0.1, 0.7, z + 0.1}, 1);
+  const floor_cut cut = cut_floor(s);
+  // On the floor, and under the top where the legs meet it. The legs'
+  // tops, inside the top, stay: the top overhangs them by more than their
+  // own size (the search's reach; coplanar_cut.h).
+  EXPECT_EQ(cut.stats.footprints, 4u + 4u);
+  EXPECT_NEAR(cut.floor_area, 16.0 - 4 * 0.01, 1e-9);
+  EXPECT_TRUE(floor_covers(cut.mesh, -0.8, 0.8, -0.4, 0.4));  // under the top, between the legs
+}
+
+TEST(ContactCut, TheCornellBoxFloorLosesTheBlocksFootprints) {
+  // The official corners (the blocks stand on y = 0); the walls, which
+  // stand on the floor's outline facing in, cut nothing.
+  const scene s = load_embedded();
+  auto shoelace = [](std::initializer_list<vec2> p) {
+    const std::vector<vec2> c(p);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      sum += c[i].x * c[(i + 1) % c.size()].y - c[(i + 1) % c.size()].x * c[i].y;
+    return 0.5 * std::abs(sum);
+  };
+  const double footprints = shoelace({{130, 65}, {82, 225}, {240, 272}, {290, 114}}) +
+                            shoelace({{423, 247}, {265, 296}, {314, 456}, {472, 406}});
+  const patch_mesh mesh = test_support::mesh_of(s, 60.0);
+  EXPECT_EQ(mesh.contact_footprints, 2u);
+  EXPECT_NEAR(mesh.contact_area_removed, footprints, 1e-6 * footprints);
+  const double whole_floor = area(tessellate(s.surfaces[std::size_t(surface_named(s, "floor"))], 60.0));
+  EXPECT_NEAR(areas_by_surface(s, mesh)["floor"], whole_floor - footprints, 1e-6 * whole_floor);
 }
 
 TEST(DepthRange, ResolvesATenthOfAMillimetreAtTheBackOfTheCornellBox) {
