@@ -848,6 +848,308 @@ std::vector<plane_group> connected_parts(const std::vector<triangle_mesh>& tesse
   return out;
 }
 
+// One connected part of a plane, and the plane lifted above it that the
+// search cuts with.
+struct contact_part {
+  const plane_group& plane;
+  vec3 lo{INFINITY}, hi{-INFINITY};  // its box
+  double front = -INFINITY;          // its offset along the normal
+  double h = 0.0;                    // the lifted plane: normal . x = h
+  plane_frame frame;
+
+  contact_part(const std::vector<triangle_mesh>& tessellated, const plane_group& p, double lift, const vec3& centre,
+               double extent)
+      : plane(p), frame(p.normal, centre, extent) {
+    for (const triangle_ref& r : plane.triangles) {
+      const triangle_mesh& m = tessellated[std::size_t(r.surface)];
+      front = std::max(front, r.offset);
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, m.positions[m.triangles[std::size_t(r.triangle)][k]]);
+        hi = glm::max(hi, m.positions[m.triangles[std::size_t(r.triangle)][k]]);
+      }
+    }
+    h = front + lift;
+  }
+  const vec3& normal() const { return plane.normal; }
+  // A point of the plane's frame, at height `height` along the normal.
+  vec3 point(const vec2& x, double height) const {
+    return frame.origin + x.x * frame.e1 + x.y * frame.e2 + normal() * (height - glm::dot(normal(), frame.origin));
+  }
+};
+
+// The triangles that cross the part's lifted plane within `reach` of its
+// box (along an axis the plane faces, only the slab around it).
+std::vector<std::pair<int, int>> crossing_near(const std::vector<triangle_mesh>& tessellated, const triangle_grid& grid,
+                                               const contact_part& part, double lift, double reach) {
+  const vec3& n = part.normal();
+  vec3 query_lo = part.lo - vec3(reach), query_hi = part.hi + vec3(reach);
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(n[k]) > 1.0 - 1e-9) query_lo[k] = query_hi[k] = part.h * n[k];
+  query_lo -= vec3(lift);
+  query_hi += vec3(lift);
+  std::vector<std::pair<int, int>> out = grid.near(query_lo, query_hi);
+  std::erase_if(out, [&](const std::pair<int, int>& ref) {
+    const triangle_mesh& m = tessellated[std::size_t(ref.first)];
+    const glm::ivec3 tri = m.triangles[std::size_t(ref.second)];
+    double lo_d = INFINITY, hi_d = -INFINITY;
+    vec3 lo_p(INFINITY), hi_p(-INFINITY);
+    for (int k = 0; k < 3; ++k) {
+      const double d = glm::dot(n, m.positions[tri[k]]);
+      lo_d = std::min(lo_d, d);
+      hi_d = std::max(hi_d, d);
+      lo_p = glm::min(lo_p, m.positions[tri[k]]);
+      hi_p = glm::max(hi_p, m.positions[tri[k]]);
+    }
+    const bool in_box = glm::all(glm::lessThanEqual(lo_p, query_hi)) && glm::all(glm::lessThanEqual(query_lo, hi_p));
+    return !(lo_d < part.h && hi_d > part.h && in_box);
+  });
+  return out;
+}
+
+// Where crossing triangles meet the lifted plane: a directed segment each,
+// with the solid's inside on its left seen from the front (outward-facing
+// solids give counter-clockwise loops; a room's inward-facing walls,
+// clockwise ones), and the exact plane positions of their integer ends.
+struct crossing_segments {
+  std::vector<std::array<ClipperLib::IntPoint, 2>> segments;
+  std::multimap<std::pair<long long, long long>, std::size_t> starting;
+  std::map<std::pair<long long, long long>, vec2> exact_points;
+};
+
+crossing_segments segments_of(const std::vector<triangle_mesh>& tessellated,
+                              const std::vector<std::pair<int, int>>& triangles, const contact_part& part) {
+  const vec3& n = part.normal();
+  const double h = part.h;
+  crossing_segments out;
+  for (const auto& [surface, t] : triangles) {
+    const triangle_mesh& m = tessellated[std::size_t(surface)];
+    const glm::ivec3 tri = m.triangles[std::size_t(t)];
+    double d[3];
+    for (int k = 0; k < 3; ++k) d[k] = glm::dot(n, m.positions[tri[k]]);
+    std::vector<vec3> points;
+    for (int k = 0; k < 3; ++k) {
+      const int j = (k + 1) % 3;
+      if ((d[k] >= h) != (d[j] >= h))
+        points.push_back(crossing(m.positions[tri[k]], m.positions[tri[j]], d[k], d[j], h));
+    }
+    if (points.size() != 2) continue;
+    const vec3 along = glm::cross(n, triangle_cross(m, t));
+    if (glm::dot(points[1] - points[0], along) < 0.0) std::swap(points[0], points[1]);
+    const ClipperLib::IntPoint p0 = part.frame.project(points[0]), p1 = part.frame.project(points[1]);
+    if (p0 == p1) continue;
+    out.exact_points.try_emplace({p0.X, p0.Y}, part.frame.exact(points[0]));
+    out.exact_points.try_emplace({p1.X, p1.Y}, part.frame.exact(points[1]));
+    out.starting.emplace(std::make_pair(p0.X, p0.Y), out.segments.size());
+    out.segments.push_back({p0, p1});
+  }
+  return out;
+}
+
+// The segments chained into closed counter-clockwise loops.
+ClipperLib::Paths closed_loops(const crossing_segments& s) {
+  const auto& segments = s.segments;
+  ClipperLib::Paths out;
+  std::vector<bool> used(segments.size(), false);
+  for (std::size_t first = 0; first < segments.size(); ++first) {
+    if (used[first]) continue;
+    ClipperLib::Path loop;
+    std::size_t at = first;
+    bool closed = false;
+    while (true) {
+      used[at] = true;
+      loop.push_back(segments[at][0]);
+      const ClipperLib::IntPoint end = segments[at][1];
+      if (end == segments[first][0]) {
+        closed = true;
+        break;
+      }
+      // Where solids touch, several segments leave one point: the one
+      // turning most to the left keeps to the boundary of one solid, the
+      // same whatever order the segments came in.
+      std::size_t next = segments.size();
+      double best_turn = -INFINITY;
+      const double in_x = double(end.X - segments[at][0].X), in_y = double(end.Y - segments[at][0].Y);
+      for (auto [it, stop] = s.starting.equal_range({end.X, end.Y}); it != stop; ++it) {
+        if (used[it->second]) continue;
+        const double out_x = double(segments[it->second][1].X - end.X),
+                     out_y = double(segments[it->second][1].Y - end.Y);
+        const double turn = std::atan2(in_x * out_y - in_y * out_x, in_x * out_x + in_y * out_y);
+        if (turn > best_turn || (turn == best_turn && it->second < next)) {
+          best_turn = turn;
+          next = it->second;
+        }
+      }
+      if (next == segments.size()) break;
+      at = next;
+    }
+    if (!closed) continue;
+    // A quad face split by a diagonal crosses the plane twice along one
+    // line: the point in between goes (it would leave slivers). Straight
+    // means within 2 integer units of the line through the neighbours.
+    for (std::size_t i = 0; loop.size() > 3 && i < loop.size();) {
+      const ClipperLib::IntPoint& p = loop[(i + loop.size() - 1) % loop.size()];
+      const ClipperLib::IntPoint& q = loop[(i + 1) % loop.size()];
+      const double dx = double(q.X - p.X), dy = double(q.Y - p.Y);
+      const double cross = dx * double(loop[i].Y - p.Y) - dy * double(loop[i].X - p.X);
+      if (std::abs(cross) <= 2.0 * std::hypot(dx, dy))
+        loop.erase(loop.begin() + std::ptrdiff_t(i));
+      else
+        ++i;
+    }
+    if (loop.size() >= 3 && ClipperLib::Area(loop) > 0.0) out.push_back(std::move(loop));
+  }
+  return out;
+}
+
+// Whether the inside of `loop` is closed above: straight up from a point
+// inside it, the first face is met from behind (coincident faces count as
+// behind). The region under a solid, which no light reaches and no eye sees.
+bool closed_above(const std::vector<triangle_mesh>& tessellated, const triangle_grid& grid, const contact_part& part,
+                  const ClipperLib::Path& loop, double tolerance) {
+  std::vector<int_point> ring;
+  for (const ClipperLib::IntPoint& q : loop) ring.push_back({q.X, q.Y});
+  const std::vector<std::array<int, 3>> ears = triangulate_with_holes(ring, {});
+  if (ears.empty()) return false;
+  const vec2 inside =
+      (part.frame.plane_point(loop[std::size_t(ears[0][0])]) + part.frame.plane_point(loop[std::size_t(ears[0][1])]) +
+       part.frame.plane_point(loop[std::size_t(ears[0][2])])) /
+      3.0;
+  bool front = true;
+  const double nearest = grid.first_hit(tessellated, part.point(inside, part.h), part.normal(), tolerance, front);
+  return nearest != INFINITY && !front;
+}
+
+// Cuts `cover` out of the part's pieces, triangle by triangle with the
+// loops over it: one polygon with thousands of holes (every room's floor
+// under its furniture) would cost far more to triangulate. Returns whether
+// anything was cut.
+bool cut_part(std::vector<triangle_mesh>& tessellated, const contact_part& part, const ClipperLib::Paths& cover,
+              const std::map<std::pair<long long, long long>, vec2>& exact_points,
+              std::vector<std::vector<bool>>& removed, contact_cut_stats& stats) {
+  bool cut_any = false;
+  std::vector<ClipperLib::IntRect> loop_boxes;
+  for (const ClipperLib::Path& loop : cover) {
+    ClipperLib::IntRect r{loop[0].X, loop[0].Y, loop[0].X, loop[0].Y};
+    for (const ClipperLib::IntPoint& q : loop) {
+      r.left = std::min(r.left, q.X);
+      r.top = std::min(r.top, q.Y);
+      r.right = std::max(r.right, q.X);
+      r.bottom = std::max(r.bottom, q.Y);
+    }
+    loop_boxes.push_back(r);
+  }
+  // The loops' boxes in a grid of about one loop per cell.
+  ClipperLib::IntRect all = loop_boxes[0];
+  for (const ClipperLib::IntRect& r : loop_boxes) {
+    all.left = std::min(all.left, r.left);
+    all.top = std::min(all.top, r.top);
+    all.right = std::max(all.right, r.right);
+    all.bottom = std::max(all.bottom, r.bottom);
+  }
+  const double side = std::max<double>({double(all.right - all.left), double(all.bottom - all.top), 1.0}) /
+                      std::max(1.0, std::sqrt(double(cover.size())));
+  auto cell = [&](long long v, long long from) { return (long long)(std::floor(double(v - from) / side)); };
+  std::unordered_map<long long, std::vector<int>> loop_cells;
+  auto cell_key = [](long long x, long long y) { return (x << 32) ^ (y & 0xffffffffLL); };
+  for (std::size_t l = 0; l < loop_boxes.size(); ++l)
+    for (long long x = cell(loop_boxes[l].left, all.left); x <= cell(loop_boxes[l].right, all.left); ++x)
+      for (long long y = cell(loop_boxes[l].top, all.top); y <= cell(loop_boxes[l].bottom, all.top); ++y)
+        loop_cells[cell_key(x, y)].push_back(int(l));
+  std::vector<unsigned> seen(cover.size(), 0);
+  unsigned query = 0;
+  std::map<std::pair<int, int>, piece> by_piece;
+  for (const triangle_ref& r : part.plane.triangles) {
+    piece& p = by_piece[{r.surface, tessellated[r.surface].materials[r.triangle]}];
+    p.surface = r.surface;
+    p.material = tessellated[r.surface].materials[r.triangle];
+    p.triangles.push_back(r.triangle);
+  }
+  for (auto& [key, p] : by_piece) {
+    triangle_mesh& m = tessellated[p.surface];
+    piece affected = p;
+    affected.triangles.clear();
+    std::vector<std::array<int_point, 3>> added;
+    double old_area = 0.0;
+    for (int t : p.triangles) {
+      const ClipperLib::Paths own = piece_paths(m, {t}, part.frame);
+      if (own.empty()) continue;
+      ClipperLib::IntRect box{own[0][0].X, own[0][0].Y, own[0][0].X, own[0][0].Y};
+      for (const ClipperLib::IntPoint& q : own[0]) {
+        box.left = std::min(box.left, q.X);
+        box.top = std::min(box.top, q.Y);
+        box.right = std::max(box.right, q.X);
+        box.bottom = std::max(box.bottom, q.Y);
+      }
+      ++query;
+      ClipperLib::Paths over;
+      for (long long x = std::max(cell(box.left, all.left), 0LL); x <= cell(box.right, all.left); ++x)
+        for (long long y = std::max(cell(box.top, all.top), 0LL); y <= cell(box.bottom, all.top); ++y) {
+          const auto it = loop_cells.find(cell_key(x, y));
+          if (it == loop_cells.end()) continue;
+          for (int l : it->second) {
+            if (seen[std::size_t(l)] == query) continue;
+            seen[std::size_t(l)] = query;
+            const ClipperLib::IntRect& lb = loop_boxes[std::size_t(l)];
+            if (lb.left < box.right && lb.right > box.left && lb.top < box.bottom && lb.bottom > box.top)
+              over.push_back(cover[std::size_t(l)]);
+          }
+        }
+      if (over.empty()) continue;
+      ClipperLib::PolyTree after;
+      ClipperLib::Clipper cut;
+      auto difference = [&](bool strictly_simple) {
+        cut.Clear();
+        cut.PreserveCollinear(true);
+        cut.StrictlySimple(strictly_simple);
+        cut.AddPaths(own, ClipperLib::ptSubject, true);
+        cut.AddPaths(over, ClipperLib::ptClip, true);
+        cut.Execute(ClipperLib::ctDifference, after, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+      };
+      // Not strictly simple: Clipper's fix-up of touching rings is
+      // quadratic in their number; asked for only where the
+      // triangulation of the difference fails.
+      difference(false);
+      const double area_before = std::abs(ClipperLib::Area(own[0])), area_after = tree_area(after);
+      if (!(area_before - area_after > 1e-9 * area_before)) continue;
+      if (area_after > 0.0 && !triangulate_region(after, added)) {
+        difference(true);
+        if (!triangulate_region(after, added)) {
+          ++stats.pieces_left_uncut;
+          continue;
+        }
+      }
+      old_area += 0.5 * glm::length(triangle_cross(m, t));
+      affected.triangles.push_back(t);  // wholly under solids: replaced by nothing
+    }
+    if (affected.triangles.empty()) continue;
+    const std::size_t first_new = m.triangles.size();
+    replace_with(m, affected, added, part.frame, exact_points, removed[p.surface]);
+    double new_area = 0.0;
+    for (std::size_t t = first_new; t < m.triangles.size(); ++t)
+      new_area += 0.5 * glm::length(triangle_cross(m, int(t)));
+    ++stats.pieces_cut;
+    stats.area_removed += old_area - new_area;
+    cut_any = true;
+  }
+  return cut_any;
+}
+
+// The loops' edges, in the part's plane: where solids stand on it.
+void record_outline(const contact_part& part, const ClipperLib::Paths& cover,
+                    const std::map<std::pair<long long, long long>, vec2>& exact_points, contact_cut_stats& stats) {
+  for (const ClipperLib::Path& loop : cover)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      std::array<vec3, 2> edge;
+      for (int k = 0; k < 2; ++k) {
+        const ClipperLib::IntPoint& q = loop[(i + std::size_t(k)) % loop.size()];
+        const auto exact = exact_points.find({q.X, q.Y});
+        edge[std::size_t(k)] =
+            part.point(exact != exact_points.end() ? exact->second : part.frame.plane_point(q), part.front);
+      }
+      stats.outline.push_back(edge);
+    }
+}
+
 }  // namespace
 
 contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
@@ -874,282 +1176,26 @@ contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, c
     parts.insert(parts.end(), std::make_move_iterator(split.begin()), std::make_move_iterator(split.end()));
   }
   for (const plane_group& plane : parts) {
-    const vec3 n = plane.normal;
-    double front = -INFINITY;
-    vec3 a(INFINITY), b(-INFINITY);
-    for (const triangle_ref& r : plane.triangles) {
-      const triangle_mesh& m = tessellated[r.surface];
-      front = std::max(front, r.offset);
-      for (int k = 0; k < 3; ++k) {
-        a = glm::min(a, m.positions[m.triangles[r.triangle][k]]);
-        b = glm::max(b, m.positions[m.triangles[r.triangle][k]]);
-      }
-    }
-    // A part smaller than a tenth of an element is a fraction of one:
-    // not worth the search (furnished rooms have half a million of them).
-    if (glm::length(b - a) < smallest_part) continue;
-    const double h = front + lift;
-    const plane_frame frame(n, centre, extent);
-    // The triangles that cross the lifted plane within `reach` of the
-    // pieces (along an axis the plane faces, only the slab around it).
-    auto crossing_near = [&](double reach) {
-      vec3 query_lo = a - vec3(reach), query_hi = b + vec3(reach);
-      for (int k = 0; k < 3; ++k)
-        if (std::abs(n[k]) > 1.0 - 1e-9) query_lo[k] = query_hi[k] = h * n[k];
-      query_lo -= vec3(lift);
-      query_hi += vec3(lift);
-      std::vector<std::pair<int, int>> out = grid.near(query_lo, query_hi);
-      std::erase_if(out, [&](const std::pair<int, int>& ref) {
-        const triangle_mesh& m = tessellated[std::size_t(ref.first)];
-        const glm::ivec3 tri = m.triangles[std::size_t(ref.second)];
-        double lo_d = INFINITY, hi_d = -INFINITY;
-        vec3 lo_p(INFINITY), hi_p(-INFINITY);
-        for (int k = 0; k < 3; ++k) {
-          const double d = glm::dot(n, m.positions[tri[k]]);
-          lo_d = std::min(lo_d, d);
-          hi_d = std::max(hi_d, d);
-          lo_p = glm::min(lo_p, m.positions[tri[k]]);
-          hi_p = glm::max(hi_p, m.positions[tri[k]]);
-        }
-        const bool in_box =
-            glm::all(glm::lessThanEqual(lo_p, query_hi)) && glm::all(glm::lessThanEqual(query_lo, hi_p));
-        return !(lo_d < h && hi_d > h && in_box);
-      });
-      return out;
-    };
-    // Fewer than three triangles cross over the pieces themselves: no loop
-    // stands on them (most planes: the faces of furniture, which the floor
+    const contact_part part(tessellated, plane, lift, centre, extent);
+    // A part smaller than a tenth of an element is a fraction of one: not
+    // worth the search (furnished rooms have half a million of them).
+    const double size = glm::length(part.hi - part.lo);
+    if (size < smallest_part) continue;
+    // Fewer than three triangles cross over the part itself: no loop
+    // stands on it (most planes: the faces of furniture, which the floor
     // alone crosses).
-    if (crossing_near(2.0 * lift).size() < 3) continue;
-    std::map<std::pair<long long, long long>, vec2> exact_points;
-    ClipperLib::Paths cover;
-    bool open = false;
-    // What stands on the plane, cut at the lifted height: a directed
-    // segment per triangle that crosses it, with the solid's inside on its
-    // left seen from the front (outward-facing solids give counter-clockwise
-    // loops; the room's inward-facing walls, clockwise ones).
-    auto find_cover = [&](double reach) {
-      std::multimap<std::pair<long long, long long>, std::size_t> starting;
-      std::vector<std::array<ClipperLib::IntPoint, 2>> segments;
-      const std::vector<std::pair<int, int>> candidates = crossing_near(reach);
-      for (const auto& [surface, t] : candidates) {
-        const triangle_mesh& m = tessellated[std::size_t(surface)];
-        const glm::ivec3 tri = m.triangles[std::size_t(t)];
-        double d[3];
-        for (int k = 0; k < 3; ++k) d[k] = glm::dot(n, m.positions[tri[k]]);
-        if (!(std::min({d[0], d[1], d[2]}) < h && std::max({d[0], d[1], d[2]}) > h)) continue;
-        std::vector<vec3> points;
-        for (int k = 0; k < 3; ++k) {
-          const int j = (k + 1) % 3;
-          if ((d[k] >= h) != (d[j] >= h))
-            points.push_back(crossing(m.positions[tri[k]], m.positions[tri[j]], d[k], d[j], h));
-        }
-        if (points.size() != 2) continue;
-        const vec3 along = glm::cross(n, triangle_cross(m, t));
-        if (glm::dot(points[1] - points[0], along) < 0.0) std::swap(points[0], points[1]);
-        const ClipperLib::IntPoint p0 = frame.project(points[0]), p1 = frame.project(points[1]);
-        if (p0 == p1) continue;
-        exact_points.try_emplace({p0.X, p0.Y}, frame.exact(points[0]));
-        exact_points.try_emplace({p1.X, p1.Y}, frame.exact(points[1]));
-        starting.emplace(std::make_pair(p0.X, p0.Y), segments.size());
-        segments.push_back({p0, p1});
-      }
-      if (segments.size() < 3) return;
-      // Closed loops, counter-clockwise, whose inside is closed above (the
-      // first thing straight up from inside is the back of a face): the
-      // region under a solid, which no light reaches and no eye sees.
-      std::vector<bool> used(segments.size(), false);
-      for (std::size_t first = 0; first < segments.size(); ++first) {
-        if (used[first]) continue;
-        ClipperLib::Path loop;
-        std::size_t at = first;
-        bool closed = false;
-        while (true) {
-          used[at] = true;
-          loop.push_back(segments[at][0]);
-          const ClipperLib::IntPoint end = segments[at][1];
-          if (end == segments[first][0]) {
-            closed = true;
-            break;
-          }
-          // Where solids touch, several segments leave one point: the one
-          // turning most to the left keeps to the boundary of one solid, the
-          // same whatever order the segments came in.
-          std::size_t next = segments.size();
-          double best_turn = -INFINITY;
-          const double in_x = double(end.X - segments[at][0].X), in_y = double(end.Y - segments[at][0].Y);
-          for (auto [it, stop] = starting.equal_range({end.X, end.Y}); it != stop; ++it) {
-            if (used[it->second]) continue;
-            const double out_x = double(segments[it->second][1].X - end.X),
-                         out_y = double(segments[it->second][1].Y - end.Y);
-            const double turn = std::atan2(in_x * out_y - in_y * out_x, in_x * out_x + in_y * out_y);
-            if (turn > best_turn || (turn == best_turn && it->second < next)) {
-              best_turn = turn;
-              next = it->second;
-            }
-          }
-          if (next == segments.size()) {
-            open = true;
-            break;
-          }
-          at = next;
-        }
-        // A quad face split by a diagonal crosses the plane twice along one
-        // line: the point in between goes (it would leave slivers). Straight
-        // means within 2 integer units of the line through the neighbours.
-        for (std::size_t i = 0; closed && loop.size() > 3 && i < loop.size();) {
-          const ClipperLib::IntPoint& p = loop[(i + loop.size() - 1) % loop.size()];
-          const ClipperLib::IntPoint& q = loop[(i + 1) % loop.size()];
-          const double dx = double(q.X - p.X), dy = double(q.Y - p.Y);
-          const double cross = dx * double(loop[i].Y - p.Y) - dy * double(loop[i].X - p.X);
-          if (std::abs(cross) <= 2.0 * std::hypot(dx, dy))
-            loop.erase(loop.begin() + std::ptrdiff_t(i));
-          else
-            ++i;
-        }
-        if (!closed || loop.size() < 3 || !(ClipperLib::Area(loop) > 0.0)) continue;
-        std::vector<int_point> ring;
-        for (const ClipperLib::IntPoint& q : loop) ring.push_back({q.X, q.Y});
-        const std::vector<std::array<int, 3>> ears = triangulate_with_holes(ring, {});
-        if (ears.empty()) continue;
-        const vec2 inside =
-            (frame.plane_point(loop[std::size_t(ears[0][0])]) + frame.plane_point(loop[std::size_t(ears[0][1])]) +
-             frame.plane_point(loop[std::size_t(ears[0][2])])) /
-            3.0;
-        const vec3 o = frame.origin + inside.x * frame.e1 + inside.y * frame.e2 + n * (h - glm::dot(n, frame.origin));
-        bool nearest_front = true;
-        const double nearest = grid.first_hit(tessellated, o, n, tolerance, nearest_front);
-        if (nearest == INFINITY || nearest_front) continue;
-        cover.push_back(std::move(loop));
-      }
-    };
+    if (crossing_near(tessellated, grid, part, lift, 2.0 * lift).size() < 3) continue;
     // As far again as the part reaches: a solid that overhangs the part by
-    // more than that (a long table top over its legs' tops) leaves open
-    // chains, and cuts nothing there.
-    find_cover(std::max(glm::length(b - a), 2.0 * lift));
-    if (cover.empty()) continue;
-    // Cut the covered ground out of every piece of the plane, triangle by
-    // triangle with the loops over it: one polygon with thousands of holes
-    // (every room's floor under its furniture) would cost far more.
-    bool cut_any = false;
-    std::vector<ClipperLib::IntRect> loop_boxes;
-    for (const ClipperLib::Path& loop : cover) {
-      ClipperLib::IntRect r{loop[0].X, loop[0].Y, loop[0].X, loop[0].Y};
-      for (const ClipperLib::IntPoint& q : loop) {
-        r.left = std::min(r.left, q.X);
-        r.top = std::min(r.top, q.Y);
-        r.right = std::max(r.right, q.X);
-        r.bottom = std::max(r.bottom, q.Y);
-      }
-      loop_boxes.push_back(r);
-    }
-    // The loops' boxes in a grid of about one loop per cell.
-    ClipperLib::IntRect all = loop_boxes[0];
-    for (const ClipperLib::IntRect& r : loop_boxes) {
-      all.left = std::min(all.left, r.left);
-      all.top = std::min(all.top, r.top);
-      all.right = std::max(all.right, r.right);
-      all.bottom = std::max(all.bottom, r.bottom);
-    }
-    const double side = std::max<double>({double(all.right - all.left), double(all.bottom - all.top), 1.0}) /
-                        std::max(1.0, std::sqrt(double(cover.size())));
-    auto cell = [&](long long v, long long from) { return (long long)(std::floor(double(v - from) / side)); };
-    std::unordered_map<long long, std::vector<int>> loop_cells;
-    auto cell_key = [](long long x, long long y) { return (x << 32) ^ (y & 0xffffffffLL); };
-    for (std::size_t l = 0; l < loop_boxes.size(); ++l)
-      for (long long x = cell(loop_boxes[l].left, all.left); x <= cell(loop_boxes[l].right, all.left); ++x)
-        for (long long y = cell(loop_boxes[l].top, all.top); y <= cell(loop_boxes[l].bottom, all.top); ++y)
-          loop_cells[cell_key(x, y)].push_back(int(l));
-    std::vector<unsigned> seen(cover.size(), 0);
-    unsigned query = 0;
-    std::map<std::pair<int, int>, piece> by_piece;
-    for (const triangle_ref& r : plane.triangles) {
-      piece& p = by_piece[{r.surface, tessellated[r.surface].materials[r.triangle]}];
-      p.surface = r.surface;
-      p.material = tessellated[r.surface].materials[r.triangle];
-      p.triangles.push_back(r.triangle);
-    }
-    for (auto& [key, p] : by_piece) {
-      triangle_mesh& m = tessellated[p.surface];
-      piece affected = p;
-      affected.triangles.clear();
-      std::vector<std::array<int_point, 3>> added;
-      double old_area = 0.0;
-      for (int t : p.triangles) {
-        const ClipperLib::Paths own = piece_paths(m, {t}, frame);
-        if (own.empty()) continue;
-        ClipperLib::IntRect box{own[0][0].X, own[0][0].Y, own[0][0].X, own[0][0].Y};
-        for (const ClipperLib::IntPoint& q : own[0]) {
-          box.left = std::min(box.left, q.X);
-          box.top = std::min(box.top, q.Y);
-          box.right = std::max(box.right, q.X);
-          box.bottom = std::max(box.bottom, q.Y);
-        }
-        ++query;
-        ClipperLib::Paths over;
-        for (long long x = std::max(cell(box.left, all.left), 0LL); x <= cell(box.right, all.left); ++x)
-          for (long long y = std::max(cell(box.top, all.top), 0LL); y <= cell(box.bottom, all.top); ++y) {
-            const auto it = loop_cells.find(cell_key(x, y));
-            if (it == loop_cells.end()) continue;
-            for (int l : it->second) {
-              if (seen[std::size_t(l)] == query) continue;
-              seen[std::size_t(l)] = query;
-              const ClipperLib::IntRect& lb = loop_boxes[std::size_t(l)];
-              if (lb.left < box.right && lb.right > box.left && lb.top < box.bottom && lb.bottom > box.top)
-                over.push_back(cover[std::size_t(l)]);
-            }
-          }
-        if (over.empty()) continue;
-        ClipperLib::PolyTree after;
-        ClipperLib::Clipper cut;
-        auto difference = [&](bool strictly_simple) {
-          cut.Clear();
-          cut.PreserveCollinear(true);
-          cut.StrictlySimple(strictly_simple);
-          cut.AddPaths(own, ClipperLib::ptSubject, true);
-          cut.AddPaths(over, ClipperLib::ptClip, true);
-          cut.Execute(ClipperLib::ctDifference, after, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-        };
-        // Not strictly simple: Clipper's fix-up of touching rings is
-        // quadratic in their number; asked for only where the
-        // triangulation of the difference fails.
-        difference(false);
-        const double area_before = std::abs(ClipperLib::Area(own[0])), area_after = tree_area(after);
-        if (!(area_before - area_after > 1e-9 * area_before)) continue;
-        if (area_after > 0.0 && !triangulate_region(after, added)) {
-          difference(true);
-          if (!triangulate_region(after, added)) {
-            ++stats.pieces_left_uncut;
-            continue;
-          }
-        }
-        old_area += 0.5 * glm::length(triangle_cross(m, t));
-        affected.triangles.push_back(t);  // wholly under solids: replaced by nothing
-      }
-      if (affected.triangles.empty()) continue;
-      const std::size_t first_new = m.triangles.size();
-      replace_with(m, affected, added, frame, exact_points, removed[p.surface]);
-      double new_area = 0.0;
-      for (std::size_t t = first_new; t < m.triangles.size(); ++t)
-        new_area += 0.5 * glm::length(triangle_cross(m, int(t)));
-      ++stats.pieces_cut;
-      stats.area_removed += old_area - new_area;
-      cut_any = true;
-    }
-    if (!cut_any) continue;
+    // more than that (a long table top over its legs' tops) leaves an open
+    // chain, and cuts nothing there.
+    const crossing_segments segments =
+        segments_of(tessellated, crossing_near(tessellated, grid, part, lift, std::max(size, 2.0 * lift)), part);
+    ClipperLib::Paths cover;
+    for (ClipperLib::Path& loop : closed_loops(segments))
+      if (closed_above(tessellated, grid, part, loop, tolerance)) cover.push_back(std::move(loop));
+    if (cover.empty() || !cut_part(tessellated, part, cover, segments.exact_points, removed, stats)) continue;
     stats.footprints += cover.size();
-    const double down = front - glm::dot(n, frame.origin);
-    for (const ClipperLib::Path& loop : cover)
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        std::array<vec3, 2> edge;
-        for (int k = 0; k < 2; ++k) {
-          const ClipperLib::IntPoint& q = loop[(i + std::size_t(k)) % loop.size()];
-          const auto exact = exact_points.find({q.X, q.Y});
-          const vec2 x = exact != exact_points.end() ? exact->second : frame.plane_point(q);
-          edge[std::size_t(k)] = frame.origin + x.x * frame.e1 + x.y * frame.e2 + n * down;
-        }
-        stats.outline.push_back(edge);
-      }
+    record_outline(part, cover, segments.exact_points, stats);
   }
   drop_removed(tessellated, removed);
   return stats;
