@@ -4,6 +4,7 @@
 // the emitter).
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,6 @@
 #include "radiosity/hierarchical/fixtures.h"
 #include "radiosity/hierarchical/solver.h"
 #include "radiosity/solve.h"
-#include "scene/scene_io.h"
 
 namespace bounce {
 namespace {
@@ -22,10 +22,28 @@ namespace {
 using namespace test_support;  // add_material, add_polygon
 
 scene bench_scene(const std::string& name) {
-  scene s;
-  load_report report;
-  EXPECT_TRUE(load_scene("embedded:bench/" + name, s, report)) << report.error;
-  return s;
+  return load_ok("embedded:bench/" + name);
+}
+
+// The defaults' solution of `s` (to 1e-6 of the power), with the closed
+// form at every vertex of the mesh solved.
+struct closed_form_run {
+  solve_setup setup;
+  std::shared_ptr<const radiosity_snapshot> solution;
+  std::vector<rgb> exact;
+  const patch_mesh& mesh() const { return solved_mesh(*setup.solver); }
+};
+
+closed_form_run solve_to_closed_form(const scene& s, solver_settings settings) {
+  settings.stop.remaining = 1e-6;
+  closed_form_run run;
+  std::string error;
+  EXPECT_TRUE(start_solve(s, settings, run.setup, error)) << error;
+  run_solver(*run.setup.solver, settings.stop);
+  run.solution = make_snapshot(*run.setup.solver);
+  run.exact = exact_vertex_radiosity(exact_kind::emitter_receiver, s, run.mesh());
+  EXPECT_EQ(run.solution->radiosity.size(), run.mesh().vertex_count());
+  return run;
 }
 
 // Relative error per reflecting vertex of the solution `settings` reach,
@@ -41,16 +59,11 @@ struct vertex_errors {
 };
 
 template <typename Where>
-vertex_errors solve_and_compare(const scene& s, solver_settings settings, Where where) {
-  settings.stop.remaining = 1e-6;
-  solve_setup setup;
-  std::string error;
-  EXPECT_TRUE(start_solve(s, settings, setup, error)) << error;
-  run_solver(*setup.solver, settings.stop);
-  const auto solution = make_snapshot(*setup.solver);
-  const patch_mesh& mesh = solved_mesh(*setup.solver);
-  const std::vector<rgb> exact = exact_vertex_radiosity(exact_kind::emitter_receiver, s, mesh);
-  EXPECT_EQ(solution->radiosity.size(), mesh.vertex_count());
+vertex_errors solve_and_compare(const scene& s, const solver_settings& settings, Where where) {
+  const closed_form_run run = solve_to_closed_form(s, settings);
+  const patch_mesh& mesh = run.mesh();
+  const auto& solution = run.solution;
+  const std::vector<rgb>& exact = run.exact;
   vertex_errors out;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     if (mesh.vertex_rho[v].g <= 0.0) continue;
@@ -120,14 +133,10 @@ TEST(VertexGather, AVertexOnACreaseHasAValuePerSide) {
   s.surfaces.push_back(std::move(roof));
   solver_settings settings;
   settings.max_edge = 0.2;
-  settings.stop.remaining = 1e-6;
-  solve_setup setup;
-  std::string error;
-  ASSERT_TRUE(start_solve(s, settings, setup, error)) << error;
-  run_solver(*setup.solver, settings.stop);
-  const auto solution = make_snapshot(*setup.solver);
-  const patch_mesh& mesh = solved_mesh(*setup.solver);
-  const std::vector<rgb> exact = exact_vertex_radiosity(exact_kind::emitter_receiver, s, mesh);
+  const closed_form_run run = solve_to_closed_form(s, settings);
+  const patch_mesh& mesh = run.mesh();
+  const auto& solution = run.solution;
+  const std::vector<rgb>& exact = run.exact;
   int left_side = 0, right_side = 0;
   double worst = 0.0, left_sum = 0.0, right_sum = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
