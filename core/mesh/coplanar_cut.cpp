@@ -398,6 +398,18 @@ ClipperLib::Paths piece_paths(const triangle_mesh& m, const std::vector<int>& tr
   return paths;
 }
 
+// A ring's bounding box in the integer frame (left/top the least X/Y).
+ClipperLib::IntRect box_of(const ClipperLib::Path& path) {
+  ClipperLib::IntRect r{path[0].X, path[0].Y, path[0].X, path[0].Y};
+  for (const ClipperLib::IntPoint& q : path) {
+    r.left = std::min(r.left, q.X);
+    r.top = std::min(r.top, q.Y);
+    r.right = std::max(r.right, q.X);
+    r.bottom = std::max(r.bottom, q.Y);
+  }
+  return r;
+}
+
 // Bounding boxes of the cover's triangles in a coarse grid, so that a
 // piece that does not overlap the cover (most of them: surfaces that only
 // share an edge, or lie apart in the same plane) skips the polygon
@@ -441,14 +453,8 @@ class cover_boxes {
     long long x0, y0, x1, y1;
   };
   static box bounds(const ClipperLib::Path& path) {
-    box b{path[0].X, path[0].Y, path[0].X, path[0].Y};
-    for (const ClipperLib::IntPoint& q : path) {
-      b.x0 = std::min(b.x0, q.X);
-      b.y0 = std::min(b.y0, q.Y);
-      b.x1 = std::max(b.x1, q.X);
-      b.y1 = std::max(b.y1, q.Y);
-    }
-    return b;
+    const ClipperLib::IntRect r = box_of(path);
+    return {r.left, r.top, r.right, r.bottom};
   }
   static bool overlap(const box& a, const box& b) {
     constexpr long long slack = 4;  // integer units: rounding of shared corners
@@ -1028,16 +1034,7 @@ bool cut_part(std::vector<triangle_mesh>& tessellated, const contact_part& part,
               std::vector<std::vector<bool>>& removed, contact_cut_stats& stats) {
   bool cut_any = false;
   std::vector<ClipperLib::IntRect> loop_boxes;
-  for (const ClipperLib::Path& loop : cover) {
-    ClipperLib::IntRect r{loop[0].X, loop[0].Y, loop[0].X, loop[0].Y};
-    for (const ClipperLib::IntPoint& q : loop) {
-      r.left = std::min(r.left, q.X);
-      r.top = std::min(r.top, q.Y);
-      r.right = std::max(r.right, q.X);
-      r.bottom = std::max(r.bottom, q.Y);
-    }
-    loop_boxes.push_back(r);
-  }
+  for (const ClipperLib::Path& loop : cover) loop_boxes.push_back(box_of(loop));
   // The loops' boxes in a grid of about one loop per cell.
   ClipperLib::IntRect all = loop_boxes[0];
   for (const ClipperLib::IntRect& r : loop_boxes) {
@@ -1073,13 +1070,7 @@ bool cut_part(std::vector<triangle_mesh>& tessellated, const contact_part& part,
     for (int t : p.triangles) {
       const ClipperLib::Paths own = piece_paths(m, {t}, part.frame);
       if (own.empty()) continue;
-      ClipperLib::IntRect box{own[0][0].X, own[0][0].Y, own[0][0].X, own[0][0].Y};
-      for (const ClipperLib::IntPoint& q : own[0]) {
-        box.left = std::min(box.left, q.X);
-        box.top = std::min(box.top, q.Y);
-        box.right = std::max(box.right, q.X);
-        box.bottom = std::max(box.bottom, q.Y);
-      }
+      const ClipperLib::IntRect box = box_of(own[0]);
       ++query;
       ClipperLib::Paths over;
       for (long long x = std::max(cell(box.left, all.left), 0LL); x <= cell(box.right, all.left); ++x)
