@@ -1,5 +1,6 @@
 #include "radiosity/hierarchical/final_gather.h"
 
+#include <algorithm>
 #include <atomic>
 #include <utility>
 
@@ -122,15 +123,25 @@ struct gather_inputs {
 }  // namespace
 
 std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
+  // Per vertex, the links above the element around it with the most:
+  // a vertex gathers at least those, and its other elements' chains share
+  // all but their lowest nodes with it. Counted without building the
+  // vertices' node lists, which the gather builds once.
   const link_hierarchy& h = solver.hierarchy;
-  const vertex_elements around = elements_around_vertices(solver.mesh());
-  std::vector<std::pair<int, double>> nodes;
+  const cluster_tree& tree = h.tree;
+  const patch_mesh& mesh = solver.mesh();
+  std::vector<std::uint64_t> chain(tree.nodes.size(), 0);
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i)
+    chain[i] =
+        h.links.count_of(i) + h.mirror_links.count_of(i) + (i > 0 ? chain[std::size_t(tree.nodes[i].parent)] : 0);
+  std::vector<std::uint64_t> most(mesh.vertex_count(), 0);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t& m = most[std::size_t(mesh.elements[e][k])];
+      m = std::max(m, chain[std::size_t(tree.leaf_of_element[e])]);
+    }
   std::uint64_t total = 0;
-  for (std::size_t v = 0; v + 1 < around.offsets.size(); ++v) {
-    nodes_above(solver, around, v, nodes);
-    for (const auto& [a, share] : nodes)
-      total += h.links.count_of(std::size_t(a)) + h.mirror_links.count_of(std::size_t(a));
-  }
+  for (const std::uint64_t m : most) total += m;
   return total;
 }
 

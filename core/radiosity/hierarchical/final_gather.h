@@ -25,8 +25,9 @@
 
 namespace bounce {
 
-// The kernel evaluations a final gather costs: over vertices, the links
-// of the distinct nodes above their elements.
+// The kernel evaluations a final gather costs, about: over vertices, the
+// links above the element around each that has the most (a lower bound:
+// the gather also takes the other elements' lowest links).
 std::uint64_t final_gather_cost(const hierarchical_solver& solver);
 
 // Fills solver.gathered with each vertex's reflected light (total: from
