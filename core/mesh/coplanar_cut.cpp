@@ -4,6 +4,8 @@
 // holes bridged in, on the same integers, so every orientation test is exact.
 #include "mesh/coplanar_cut.h"
 
+#include "base/random_stream.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -48,17 +50,6 @@ bool inside_wedge(const int_point& a, const int_point& b, const int_point& c, co
   const int_point to_c{c.x - b.x, c.y - b.y}, to_a{a.x - b.x, a.y - b.y}, d{towards.x - b.x, towards.y - b.y};
   if (orient(a, b, c) > 0) return orient(o, to_c, d) > 0 && orient(o, d, to_a) > 0;  // convex corner
   return orient(o, to_c, d) > 0 || orient(o, d, to_a) > 0;                           // reflex (or straight)
-}
-
-double smallest_angle(const int_point& a, const int_point& b, const int_point& c) {
-  const vec2 p[3] = {vec2(double(a.x), double(a.y)), vec2(double(b.x), double(b.y)), vec2(double(c.x), double(c.y))};
-  double smallest = INFINITY;
-  for (int k = 0; k < 3; ++k) {
-    const vec2 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-    const double cosine = glm::dot(u, v) / std::max(glm::length(u) * glm::length(v), 1e-300);
-    smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)));
-  }
-  return smallest;
 }
 
 // Whether d lies strictly inside the circle through a, b, c (counter-
@@ -125,6 +116,61 @@ void make_delaunay(const std::vector<int_point>& points, const std::set<std::pai
   }
 }
 
+// A ring's corners in a uniform grid of about one corner per cell, for the
+// corners inside an ear: testing every corner made ear clipping cubic on a
+// floor triangle with two thousand holes.
+class corner_grid {
+ public:
+  corner_grid(const std::vector<int_point>& points, const std::vector<int>& ring) : alive_(ring.size(), true) {
+    lo_ = hi_ = points[std::size_t(ring[0])];
+    for (int r : ring) {
+      const int_point& p = points[std::size_t(r)];
+      lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y)};
+      hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y)};
+    }
+    const double width = double(hi_.x - lo_.x) + 1.0, height = double(hi_.y - lo_.y) + 1.0;
+    const double side = std::max(std::sqrt(width * height / double(ring.size())), 1.0);
+    columns_ = int(std::clamp(std::ceil(width / side), 1.0, 4096.0));
+    rows_ = int(std::clamp(std::ceil(height / side), 1.0, 4096.0));
+    start_.assign(std::size_t(columns_) * std::size_t(rows_) + 1, 0);
+    for (int r : ring) ++start_[cell(points[std::size_t(r)]) + 1];
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    nodes_.resize(ring.size());
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t node = 0; node < ring.size(); ++node)
+      nodes_[fill[cell(points[std::size_t(ring[node])])]++] = int(node);
+  }
+  void remove(int node) { alive_[std::size_t(node)] = false; }
+  // Calls visit(node) for every live node whose corner may lie in [a, b].
+  template <class Visit>
+  bool all_of(const int_point& a, const int_point& b, Visit&& visit) const {
+    const int x0 = column(a.x), x1 = column(b.x), y0 = row(a.y), y1 = row(b.y);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const std::size_t c = std::size_t(y) * std::size_t(columns_) + std::size_t(x);
+        for (std::size_t at = start_[c]; at < start_[c + 1]; ++at)
+          if (alive_[std::size_t(nodes_[at])] && !visit(nodes_[at])) return false;
+      }
+    return true;
+  }
+
+ private:
+  int column(long long x) const {
+    return std::clamp(int(double(x - lo_.x) * double(columns_) / (double(hi_.x - lo_.x) + 1.0)), 0, columns_ - 1);
+  }
+  int row(long long y) const {
+    return std::clamp(int(double(y - lo_.y) * double(rows_) / (double(hi_.y - lo_.y) + 1.0)), 0, rows_ - 1);
+  }
+  std::size_t cell(const int_point& p) const {
+    return std::size_t(row(p.y)) * std::size_t(columns_) + std::size_t(column(p.x));
+  }
+  int_point lo_, hi_;
+  int columns_ = 1, rows_ = 1;
+  std::vector<std::size_t> start_;  // by cell: where its nodes begin (one past the last cell: the end)
+  std::vector<int> nodes_;
+  std::vector<bool> alive_;
+};
+
 }  // namespace
 
 std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_point>& outer,
@@ -186,14 +232,20 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
       const int_point& v = points[ring[s]];
       if (v == h) continue;
       if (!inside_wedge(points[ring[(s + n - 1) % n]], v, points[ring[(s + 1) % n]], h)) continue;
-      by_distance.emplace_back(std::hypot(double(v.x - h.x), double(v.y - h.y)), int(s));
+      const double dx = double(v.x - h.x), dy = double(v.y - h.y);
+      by_distance.emplace_back(dx * dx + dy * dy, int(s));
     }
-    std::sort(by_distance.begin(), by_distance.end());
-    for (const auto& [distance, s] : by_distance)
+    // A heap, not a sort: the first or second corner is nearly always clear.
+    const auto farther = [](const std::pair<double, int>& a, const std::pair<double, int>& b) { return b < a; };
+    std::make_heap(by_distance.begin(), by_distance.end(), farther);
+    for (auto end = by_distance.end(); end != by_distance.begin(); --end) {
+      std::pop_heap(by_distance.begin(), end, farther);
+      const int s = (end - 1)->second;
       if (bridge_is_clear(points[ring[std::size_t(s)]])) {
         best = s;
         break;
       }
+    }
     if (best < 0) return {};  // no bridge: not a valid polygon with holes
     std::vector<int> merged(ring.begin(), ring.begin() + best + 1);
     for (std::size_t i = 0; i <= hole.size(); ++i) merged.push_back(hole[(start + i) % hole.size()]);
@@ -202,21 +254,24 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
     ring = std::move(merged);
   }
 
-  // Ear clipping on the ring, taking the best-shaped ear each time (the
-  // largest smallest angle; the first ear found on large rings, where the
-  // search would cost too much).
+  // Ear clipping on the ring, the first ear found from where the last was
+  // cut: the flips below make the shapes, whichever ears were taken.
   const int n = int(ring.size());
   std::vector<int> prev(n), next(n);
   for (int i = 0; i < n; ++i) {
     prev[i] = (i + n - 1) % n;
     next[i] = (i + 1) % n;
   }
+  corner_grid grid(points, ring);
   auto is_ear = [&](int i) {
     const int_point &a = points[ring[prev[i]]], &b = points[ring[i]], &c = points[ring[next[i]]];
     if (orient(a, b, c) <= 0) return false;
-    for (int k = next[next[i]]; k != prev[i]; k = next[k]) {
+    const int_point lo{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y})};
+    const int_point hi{std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y})};
+    return grid.all_of(lo, hi, [&](int k) {
+      if (k == i || k == prev[i] || k == next[i]) return true;
       const int_point& p = points[ring[k]];
-      if (p == a || p == c) continue;
+      if (p == a || p == c) return true;
       if (p == b) {
         // The other copy of a bridge end: its edges must stay out of the ear.
         for (int q : {prev[k], next[k]}) {
@@ -224,27 +279,18 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
           if (r == a || r == c) continue;
           if (orient(a, b, r) > 0 && orient(b, c, r) > 0) return false;  // leaves b into the ear
         }
-        continue;
+        return true;
       }
-      if (orient(a, b, p) >= 0 && orient(b, c, p) >= 0 && orient(c, a, p) >= 0) return false;
-    }
-    return true;
+      return !(orient(a, b, p) >= 0 && orient(b, c, p) >= 0 && orient(c, a, p) >= 0);
+    });
   };
   std::vector<std::array<int, 3>> triangles;
   int left = n, cursor = 0;
   while (left > 3) {
     int chosen = -1;
-    double chosen_quality = -1.0;
     int i = cursor;
-    for (int step = 0; step < left; ++step, i = next[i]) {
-      if (!is_ear(i)) continue;
-      const double quality = smallest_angle(points[ring[prev[i]]], points[ring[i]], points[ring[next[i]]]);
-      if (quality > chosen_quality) {
-        chosen = i;
-        chosen_quality = quality;
-      }
-      if (left > 256) break;
-    }
+    for (int step = 0; step < left && chosen < 0; ++step, i = next[i])
+      if (is_ear(i)) chosen = i;
     if (chosen < 0) {
       // No ear: only straight corners block (or the input is not simple).
       // Dropping a straight corner keeps the area; anything else fails.
@@ -259,6 +305,7 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
     }
     next[prev[chosen]] = next[chosen];
     prev[next[chosen]] = prev[chosen];
+    grid.remove(chosen);
     cursor = next[chosen];
     --left;
   }
@@ -306,39 +353,61 @@ std::vector<plane_group> plane_groups(const std::vector<triangle_mesh>& tessella
   // By normal first: a hash on the normal in cells of the angle tolerance,
   // the neighbouring cells searched too.
   std::vector<plane_group> by_normal;
-  std::map<std::tuple<long long, long long, long long>, std::vector<int>> cells;
+  struct cell_hash {
+    std::size_t operator()(std::uint64_t key) const { return std::size_t(murmur_mix64(key)); }
+  };
+  std::unordered_map<std::uint64_t, std::vector<int>, cell_hash> cells;
   const double cos_max = std::cos(coplanar_max_angle);
+  std::vector<int> recent;
   for (std::size_t s = 0; s < tessellated.size(); ++s) {
     if (!flat[s]) continue;
+    recent.clear();
     const triangle_mesh& m = tessellated[s];
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
       const vec3 cross = triangle_cross(m, int(t));
       const double length = glm::length(cross);
       if (!(length > 0.0) || !std::isfinite(length)) continue;
       const vec3 n = cross / length;
+      // A unit normal's cells run to 1 / coplanar_max_angle on each axis:
+      // far inside 21 bits each.
       const auto cell = [&](const vec3& v) {
         return std::make_tuple(std::llround(v.x / coplanar_max_angle), std::llround(v.y / coplanar_max_angle),
                                std::llround(v.z / coplanar_max_angle));
       };
+      const auto packed = [](long long x, long long y, long long z) {
+        constexpr long long bias = 1 << 20;
+        return (std::uint64_t(x + bias) << 42) | (std::uint64_t(y + bias) << 21) | std::uint64_t(z + bias);
+      };
       const auto [cx, cy, cz] = cell(n);
+      // A surface's triangles mostly lie in a few planes (a box's six): the
+      // groups it already met are tried before the search of 27 cells.
       int found = -1;
+      for (int g : recent)
+        if (glm::dot(by_normal[std::size_t(g)].normal, n) >= cos_max) {
+          found = g;
+          break;
+        }
+      const auto search = [&](long long x, long long y, long long z) {
+        auto it = cells.find(packed(x, y, z));
+        if (it == cells.end()) return;
+        for (int g : it->second)
+          if (glm::dot(by_normal[std::size_t(g)].normal, n) >= cos_max) {
+            found = g;
+            return;
+          }
+      };
+      if (found < 0) search(cx, cy, cz);  // then the normal's own cell
       for (long long dx = -1; dx <= 1 && found < 0; ++dx)
         for (long long dy = -1; dy <= 1 && found < 0; ++dy)
-          for (long long dz = -1; dz <= 1 && found < 0; ++dz) {
-            auto it = cells.find({cx + dx, cy + dy, cz + dz});
-            if (it == cells.end()) continue;
-            for (int g : it->second)
-              if (glm::dot(by_normal[g].normal, n) >= cos_max) {
-                found = g;
-                break;
-              }
-          }
+          for (long long dz = -1; dz <= 1 && found < 0; ++dz)
+            if (dx != 0 || dy != 0 || dz != 0) search(cx + dx, cy + dy, cz + dz);
       if (found < 0) {
         found = int(by_normal.size());
         by_normal.push_back({n, {}});
-        cells[{cx, cy, cz}].push_back(found);
+        cells[packed(cx, cy, cz)].push_back(found);
       }
       by_normal[found].triangles.push_back({int(s), int(t), 0.0});
+      if (std::find(recent.begin(), recent.end(), found) == recent.end() && recent.size() < 8) recent.push_back(found);
     }
   }
   // Then by offset along the normal: sorted, split where neighbours are
@@ -695,7 +764,9 @@ double ray_hit(const vec3& o, const vec3& d, const vec3& a, const vec3& b, const
 }
 
 // Every triangle of the scene in a uniform grid of its bounding boxes, for
-// the triangles near a plane and those above a point.
+// the triangles near a plane and those above a point. The cells are one
+// dense table (offsets into one id list): a hash map's lookups, a cache miss
+// each, cost more than all else when a floor's slab spans a building.
 class triangle_grid {
  public:
   triangle_grid(const std::vector<triangle_mesh>& tessellated, const vec3& lo, const vec3& hi) : lo_(lo) {
@@ -703,10 +774,23 @@ class triangle_grid {
     for (const triangle_mesh& m : tessellated) count += m.triangles.size();
     const vec3 size = glm::max(hi - lo, vec3(1e-300));
     // Four times the cube root of the triangle count along the largest
-    // side: furnished rooms are dense, and a plane's slab should meet few.
-    const double cells = std::clamp(4.0 * std::cbrt(double(count)), 1.0, 512.0);
-    cell_ = std::max({size.x, size.y, size.z}) / cells;
+    // side (furnished rooms are dense, and a plane's slab should meet few),
+    // with no more cells than four per triangle over the whole box.
+    const double largest = std::max({size.x, size.y, size.z});
+    double cells = std::clamp(4.0 * std::cbrt(double(count)), 1.0, 512.0);
+    cell_ = largest / cells;
+    const double budget = 4.0 * double(std::max<std::size_t>(count, 1));
+    auto total_cells = [&] {
+      double total = 1.0;
+      for (int k = 0; k < 3; ++k) total *= std::max(1.0, std::ceil(size[k] / cell_));
+      return total;
+    };
+    while (total_cells() > budget && cells > 1.0) {
+      cells = std::max(1.0, cells * 0.8);
+      cell_ = largest / cells;
+    }
     for (int k = 0; k < 3; ++k) dims_[k] = std::max(1, int(std::ceil(size[k] / cell_)));
+    std::vector<std::pair<glm::ivec3, glm::ivec3>> spans;
     for (std::size_t s = 0; s < tessellated.size(); ++s) {
       const triangle_mesh& m = tessellated[s];
       for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -715,19 +799,29 @@ class triangle_grid {
           a = glm::min(a, m.positions[m.triangles[t][k]]);
           b = glm::max(b, m.positions[m.triangles[t][k]]);
         }
-        const glm::ivec3 c0 = cell_of(a), c1 = cell_of(b);
-        const long long span = (long long)(c1.x - c0.x + 1) * (c1.y - c0.y + 1) * (c1.z - c0.z + 1);
-        const int id = int(refs_.size());
         refs_.emplace_back(int(s), int(t));
-        if (span > (1 << 20)) {  // a flat layer of cells across the grid is fine; a solid block is not
-          large_.push_back(id);
-          continue;
-        }
-        for (int x = c0.x; x <= c1.x; ++x)
-          for (int y = c0.y; y <= c1.y; ++y)
-            for (int z = c0.z; z <= c1.z; ++z) cells_[key(x, y, z)].push_back(id);
+        spans.emplace_back(cell_of(a), cell_of(b));
       }
     }
+    // Counted, then filled: a flat layer of cells across the grid is fine;
+    // a solid block of them is not, and goes to the list every query takes.
+    start_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
+    auto each_cell = [&](std::size_t id, auto&& visit) {
+      const auto& [c0, c1] = spans[id];
+      const long long span = (long long)(c1.x - c0.x + 1) * (c1.y - c0.y + 1) * (c1.z - c0.z + 1);
+      if (span > (1 << 20)) return false;
+      for (int x = c0.x; x <= c1.x; ++x)
+        for (int y = c0.y; y <= c1.y; ++y)
+          for (int z = c0.z; z <= c1.z; ++z) visit(key(x, y, z));
+      return true;
+    };
+    for (std::size_t id = 0; id < refs_.size(); ++id)
+      if (!each_cell(id, [&](std::size_t cell) { ++start_[cell + 1]; })) large_.push_back(int(id));
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    ids_.resize(start_.back());
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t id = 0; id < refs_.size(); ++id)
+      each_cell(id, [&](std::size_t cell) { ids_[fill[cell]++] = int(id); });
     stamp_.assign(refs_.size(), 0);
   }
 
@@ -746,8 +840,7 @@ class triangle_grid {
     for (int x = c0.x; x <= c1.x; ++x)
       for (int y = c0.y; y <= c1.y; ++y)
         for (int z = c0.z; z <= c1.z; ++z)
-          if (auto it = cells_.find(key(x, y, z)); it != cells_.end())
-            for (int id : it->second) take(id);
+          for (std::size_t at = start_[key(x, y, z)]; at < start_[key(x, y, z) + 1]; ++at) take(ids_[at]);
     return out;
   }
 
@@ -787,8 +880,7 @@ class triangle_grid {
       t_delta[k] = step[k] != 0 ? cell_ / std::abs(d[k]) : INFINITY;
     }
     for (;;) {
-      if (auto it = cells_.find(key(c.x, c.y, c.z)); it != cells_.end())
-        for (int id : it->second) test(id);
+      for (std::size_t at = start_[key(c.x, c.y, c.z)]; at < start_[key(c.x, c.y, c.z) + 1]; ++at) test(ids_[at]);
       const int k = t_max.x < t_max.y ? (t_max.x < t_max.z ? 0 : 2) : (t_max.y < t_max.z ? 1 : 2);
       if (nearest + tolerance < t_max[k]) break;  // nothing farther can be nearer
       c[k] += step[k];
@@ -804,12 +896,15 @@ class triangle_grid {
     for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
     return c;
   }
-  long long key(int x, int y, int z) const { return (static_cast<long long>(x) * dims_[1] + y) * dims_[2] + z; }
+  std::size_t key(int x, int y, int z) const {
+    return (std::size_t(x) * std::size_t(dims_[1]) + std::size_t(y)) * std::size_t(dims_[2]) + std::size_t(z);
+  }
   vec3 lo_;
   double cell_ = 1.0;
   int dims_[3] = {1, 1, 1};
   std::vector<std::pair<int, int>> refs_;  // by id: (surface, triangle)
-  std::unordered_map<long long, std::vector<int>> cells_;
+  std::vector<std::size_t> start_;         // by cell: where its ids begin in ids_ (one past the last cell: the end)
+  std::vector<int> ids_;
   std::vector<int> large_;
   mutable std::vector<unsigned> stamp_;  // per id: the last query that took it
   mutable unsigned query_ = 0;
@@ -951,10 +1046,18 @@ crossing_segments segments_of(const std::vector<triangle_mesh>& tessellated,
   return out;
 }
 
-// The segments chained into closed counter-clockwise loops.
-ClipperLib::Paths closed_loops(const crossing_segments& s) {
+// The segments chained into loops: the closed counter-clockwise ones, and
+// whether a chain stayed open over `part_box` (a solid on the part reaching
+// past the search; chains open only outside it, such as a wall beside the
+// part, are not).
+struct chained_loops {
+  ClipperLib::Paths closed;
+  bool open_over_part = false;
+};
+
+chained_loops closed_loops(const crossing_segments& s, const ClipperLib::IntRect& part_box) {
   const auto& segments = s.segments;
-  ClipperLib::Paths out;
+  chained_loops out;
   std::vector<bool> used(segments.size(), false);
   for (std::size_t first = 0; first < segments.size(); ++first) {
     if (used[first]) continue;
@@ -988,7 +1091,12 @@ ClipperLib::Paths closed_loops(const crossing_segments& s) {
       if (next == segments.size()) break;
       at = next;
     }
-    if (!closed) continue;
+    if (!closed) {
+      for (const ClipperLib::IntPoint& q : loop)
+        if (q.X > part_box.left && q.X < part_box.right && q.Y > part_box.top && q.Y < part_box.bottom)
+          out.open_over_part = true;
+      continue;
+    }
     // A quad face split by a diagonal crosses the plane twice along one
     // line: the point in between goes (it would leave slivers). Straight
     // means within 2 integer units of the line through the neighbours.
@@ -1002,9 +1110,26 @@ ClipperLib::Paths closed_loops(const crossing_segments& s) {
       else
         ++i;
     }
-    if (loop.size() >= 3 && ClipperLib::Area(loop) > 0.0) out.push_back(std::move(loop));
+    if (loop.size() >= 3 && ClipperLib::Area(loop) > 0.0) out.closed.push_back(std::move(loop));
   }
   return out;
+}
+
+// The part's box in its plane's integer frame, shrunk by `margin`.
+ClipperLib::IntRect inner_box(const std::vector<triangle_mesh>& tessellated, const contact_part& part, double margin) {
+  ClipperLib::Path corners;
+  for (const triangle_ref& r : part.plane.triangles) {
+    const triangle_mesh& m = tessellated[std::size_t(r.surface)];
+    for (int k = 0; k < 3; ++k)
+      corners.push_back(part.frame.project(m.positions[m.triangles[std::size_t(r.triangle)][k]]));
+  }
+  ClipperLib::IntRect box = box_of(corners);
+  const long long shrink = std::llround(margin / part.frame.unit);
+  box.left += shrink;
+  box.top += shrink;
+  box.right -= shrink;
+  box.bottom -= shrink;
+  return box;
 }
 
 // Whether the inside of `loop` is closed above: straight up from a point
@@ -1175,15 +1300,29 @@ contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, c
     // Fewer than three triangles cross over the part itself: no loop
     // stands on it (most planes: the faces of furniture, which the floor
     // alone crosses).
-    if (crossing_near(tessellated, grid, part, lift, 2.0 * lift).size() < 3) continue;
-    // As far again as the part reaches: a solid that overhangs the part by
-    // more than that (a long table top over its legs' tops) leaves an open
-    // chain, and cuts nothing there.
-    const crossing_segments segments =
-        segments_of(tessellated, crossing_near(tessellated, grid, part, lift, std::max(size, 2.0 * lift)), part);
+    const std::vector<std::pair<int, int>> over_part = crossing_near(tessellated, grid, part, lift, 2.0 * lift);
+    if (over_part.size() < 3) continue;
+    crossing_segments segments = segments_of(tessellated, over_part, part);
+    const ClipperLib::IntRect part_box = inner_box(tessellated, part, 2.0 * lift);
+    chained_loops loops = closed_loops(segments, part_box);
+    // A chain that leaves the part: search again as far as the part
+    // reaches. A solid that overhangs the part by more than that (a long
+    // table top over its legs' tops) leaves an open chain, and cuts nothing
+    // there. Most solids stand inside their part, and skip the wide search.
+    if (loops.open_over_part && size > 2.0 * lift) {
+      segments = segments_of(tessellated, crossing_near(tessellated, grid, part, lift, size), part);
+      loops = closed_loops(segments, part_box);
+    }
+    // Loops off the part (a wide search meets its neighbours' solids) are
+    // neither cut nor counted.
+    const ClipperLib::IntRect whole_box = inner_box(tessellated, part, 0.0);
     ClipperLib::Paths cover;
-    for (ClipperLib::Path& loop : closed_loops(segments))
-      if (closed_above(tessellated, grid, part, loop, tolerance)) cover.push_back(std::move(loop));
+    for (ClipperLib::Path& loop : loops.closed) {
+      const ClipperLib::IntRect b = box_of(loop);
+      const bool meets =
+          b.left < whole_box.right && whole_box.left < b.right && b.top < whole_box.bottom && whole_box.top < b.bottom;
+      if (meets && closed_above(tessellated, grid, part, loop, tolerance)) cover.push_back(std::move(loop));
+    }
     if (cover.empty() || !cut_part(tessellated, part, cover, segments.exact_points, removed, stats)) continue;
     stats.footprints += cover.size();
     record_outline(part, cover, segments.exact_points, stats);
