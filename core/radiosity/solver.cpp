@@ -4,6 +4,7 @@
 
 #include "radiosity/hierarchical/publication.h"
 #include "radiosity/hierarchical/solver.h"
+#include "radiosity/hierarchical/view_importance.h"
 #include "radiosity/transfer/mirror_images.h"
 
 namespace bounce {
@@ -78,6 +79,7 @@ std::unique_ptr<radiosity_solver> make_radiosity_solver(const scene& s, const pa
       context.mirrors = find_planar_mirrors(s, mesh);
     auto run = std::make_unique<hierarchical_run>();
     run->solver = make_hierarchical_solver(s, mesh, context, params.hierarchical);
+    if (params.view) set_view(*run->solver, *params.view);
     run->refine_below = params.hierarchical.refine_below;
     publish(*run);
     solver->state = std::move(run);
@@ -95,6 +97,13 @@ void restart_solver(radiosity_solver& solver) {
                         }},
              solver.state);
   update_stats(solver, 0.0);
+}
+
+void set_solver_view(radiosity_solver& solver, const camera& view) {
+  auto* run = std::get_if<std::unique_ptr<hierarchical_run>>(&solver.state);
+  if (!run) return;
+  set_view(*(*run)->solver, view);
+  update_stats(solver, solver.stats.seconds);  // no longer final
 }
 
 bool step_solver(radiosity_solver& solver) {

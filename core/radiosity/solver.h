@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <variant>
 
 #include "radiosity/hierarchical/state.h"
@@ -27,6 +28,7 @@ struct radiosity_params {
   form_factor_params form_factors;
   adaptive_params adaptive;  // progressive only
   hierarchical_params hierarchical;
+  std::optional<camera> view;  // hierarchical: the camera that leads refinement (none: view-independent)
 };
 
 // The hierarchical solver with what it has published (hierarchical/publication.h).
@@ -55,6 +57,11 @@ void restart_solver(radiosity_solver& solver);
 // One step of the solver; updates solver.stats. Returns false when
 // nothing is left to do.
 bool step_solver(radiosity_solver& solver);
+
+// Leads the solver's refinement by `view` from now on (the hierarchical
+// solver: view_importance.h), keeping what is refined; the progressive
+// solver is view-independent and ignores it.
+void set_solver_view(radiosity_solver& solver, const camera& view);
 
 // True when the solver's progress meets `stop`.
 bool stop_reached(const radiosity_solver& solver, const stop_criterion& stop);

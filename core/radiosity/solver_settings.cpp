@@ -45,6 +45,7 @@ radiosity_params radiosity_params_for(const solver_settings& settings) {
   // Each tolerance is solved to the run's stopping point, or 2%, before
   // the links are refined further.
   p.hierarchical.refine_below = std::max(settings.stop.remaining, 0.02);
+  p.view = settings.view;
   return p;
 }
 

@@ -48,6 +48,9 @@ struct solver_settings {
   // power that one link may carry unrefined (the accuracy knob).
   double link_tolerance = 1e-5;
   stop_criterion stop{0.01, 0, 0.0};  // 1% of the power left; no step or time limit
+  // Hierarchical: the camera whose view leads refinement (importance,
+  // hierarchical/view_importance.h); none: every part of the scene alike.
+  std::optional<camera> view;
 };
 
 // The mesher's parameters for `s`: element size from the scene when not

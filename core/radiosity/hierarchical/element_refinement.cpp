@@ -5,6 +5,7 @@
 
 #include "base/check.h"
 #include "radiosity/hierarchical/sources.h"
+#include "radiosity/hierarchical/view_importance.h"
 #include "radiosity/transfer/form_factor.h"
 
 namespace bounce {
@@ -26,7 +27,8 @@ int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>&
   const cluster_node& r = solver.hierarchy.tree.nodes[std::size_t(i)];
   const cluster_node& s = solver.hierarchy.tree.nodes[std::size_t(j)];
   const patch_mesh& mesh = solver.mesh();
-  const double transfer = r.area * channel_max(node_b[std::size_t(j)]) * (chain ? channel_max(chain->path.kr) : 1.0);
+  const double transfer = r.area * channel_max(node_b[std::size_t(j)]) * (chain ? channel_max(chain->path.kr) : 1.0) *
+                          receiver_weight(solver, i);
   if (!(factor * transfer > tolerance)) return 0;  // nothing this pair carries can matter
   double error = 0.0;
   if (visibility > 0.0f && visibility < 1.0f) {

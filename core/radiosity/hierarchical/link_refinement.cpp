@@ -12,6 +12,7 @@
 #include "radiosity/hierarchical/element_refinement.h"
 #include "radiosity/hierarchical/oracle.h"
 #include "radiosity/hierarchical/transport.h"
+#include "radiosity/hierarchical/view_importance.h"
 
 namespace bounce {
 namespace {
@@ -143,8 +144,15 @@ void collect_marks(hierarchical_solver& solver, refine_context& ctx) {
       m = std::max(m, std::uint8_t(bisections));
     }
   solver.progress.split_marks += marked;
-  if (double(marked) < solver.params.min_marked_fraction * double(solver.mesh().element_count()))
-    solver.split_marks.clear();
+  // With a view, of the elements it sees: the rest of a large scene may
+  // need nothing, and the view's few hundred are what the picture shows.
+  std::size_t counted = solver.mesh().element_count();
+  if (!solver.view.seen.empty()) {
+    counted = 0;
+    for (std::size_t e = 0; e < solver.mesh().element_count(); ++e)
+      counted += solver.view.seen[std::size_t(solver.meshes.input_element[e])] > 0.0 ? 1 : 0;
+  }
+  if (double(marked) < solver.params.min_marked_fraction * double(counted)) solver.split_marks.clear();
 }
 
 }  // namespace
@@ -152,6 +160,8 @@ void collect_marks(hierarchical_solver& solver, refine_context& ctx) {
 void refine_links(hierarchical_solver& solver, double tolerance) {
   link_hierarchy& h = solver.hierarchy;
   if (h.tree.nodes.empty()) return;
+  update_view_weights(solver);  // the receivers' weights, on the tree and links as they stand
+  solver.view.retarget = false;
   std::vector<rgb> node_b(h.tree.nodes.size());
   pull(solver, solver.light.total, node_b, nullptr);  // the oracle charges the mean
   // The tolerance is relative to the power leaving all surfaces now (at

@@ -6,6 +6,7 @@
 
 #include "base/random_stream.h"
 #include "radiosity/hierarchical/node_kernels.h"
+#include "radiosity/hierarchical/view_importance.h"
 #include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/occlusion.h"
 
@@ -101,7 +102,7 @@ pair_charge charge(const hierarchical_solver& solver, const std::vector<rgb>& no
   const cluster_node& r = solver.hierarchy.tree.nodes[std::size_t(i)];
   const cluster_node& s = solver.hierarchy.tree.nodes[std::size_t(j)];
   pair_charge out;
-  const double transfer = r.area * channel_max(node_b[std::size_t(j)]);
+  const double transfer = r.area * channel_max(node_b[std::size_t(j)]) * receiver_weight(solver, i);
   out.bf = out.split = e.bound * transfer;
   if (r.leaf() && s.leaf()) return out;
   const bool receiver = !r.leaf() && (s.leaf() || r.area >= s.area);  // as a split would choose
@@ -117,7 +118,8 @@ pair_charge charge_through(const hierarchical_solver& solver, const std::vector<
   const cluster_node& r = tree.nodes[std::size_t(i)];
   const cluster_node& s = tree.nodes[std::size_t(j)];
   const mirror_chain& chain = solver.hierarchy.chains[std::size_t(c)];
-  const double transfer = channel_max(chain.path.kr) * r.area * channel_max(node_b[std::size_t(j)]);
+  const double transfer =
+      channel_max(chain.path.kr) * r.area * channel_max(node_b[std::size_t(j)]) * receiver_weight(solver, i);
   double bound = e.bound;
   if (!s.leaf()) {
     double lo = INFINITY, hi = 0.0;

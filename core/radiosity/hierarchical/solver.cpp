@@ -49,12 +49,12 @@ void first_links(hierarchical_solver& solver) {
 
 // Refines: first the elements the last links marked (against the solution
 // as it is now), then the links at the next tolerance, or at the final one
-// again if elements were split.
+// again if elements were split or a new view leads.
 void refine(hierarchical_solver& solver) {
   solver.progress.previous_residual = INFINITY;
   const bool remeshed = splits_pending(solver) && split_marked_elements(solver);
   const double next = std::max(solver.params.tolerance, solver.progress.tolerance / solver.params.refine_factor);
-  if (next < solver.progress.tolerance || remeshed) {
+  if (next < solver.progress.tolerance || remeshed || solver.view.retarget) {
     solver.progress.tolerance = next;
     solver.progress.links_final = tolerance_final(solver);
     refine_links(solver, solver.progress.tolerance);
@@ -124,6 +124,8 @@ void restart_hierarchical(hierarchical_solver& solver) {
   clear_links(solver.hierarchy.links, nodes);
   clear_links(solver.hierarchy.mirror_links, nodes);
   solver.split_marks.clear();
+  solver.view.node.clear();  // the view stays; its weights come with the links
+  solver.view.retarget = false;
   const std::size_t n = solver.mesh().element_count();
   solver.hierarchy.normalizer.assign(n, 1.0);
   solver.light.total = right_hand_side(solver);
@@ -142,7 +144,7 @@ void restart_hierarchical(hierarchical_solver& solver) {
 }
 
 bool refinement_done(const hierarchical_solver& solver) {
-  return solver.progress.links_final && !splits_pending(solver);
+  return solver.progress.links_final && !splits_pending(solver) && !solver.view.retarget;
 }
 
 bool step_hierarchical(hierarchical_solver& solver, double refine_below) {

@@ -83,6 +83,13 @@ struct transport_buffers {
   std::vector<rgb> mirrored;             // per element: irradiance through the mirror links
 };
 
+// The view that leads refinement (view_importance.h).
+struct view_weights {
+  std::vector<double> seen;  // per input element: the camera's rays per unit area (empty: no view)
+  std::vector<double> node;  // per tree node: the receiver's weight (empty: every receiver weighs 1)
+  bool retarget = false;     // a new view waits for the links to be refined for it
+};
+
 struct hierarchy_progress {
   double tolerance = 0.0;    // the oracle's current tolerance (fraction of emitted power)
   bool links_final = false;  // tolerance has reached its final value
@@ -116,6 +123,7 @@ struct hierarchical_solver {
   // at the vertex over the links above its elements (final_gather.h;
   // empty until made). Indexed by vertex, unlike `light`.
   light_parts gathered;
+  view_weights view;
   // Per element, the bisections the last link refinement asked for
   // (empty: none; element_refinement.h).
   std::vector<std::uint8_t> split_marks;

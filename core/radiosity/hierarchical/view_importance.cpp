@@ -1,0 +1,111 @@
+#include "radiosity/hierarchical/view_importance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include "base/parallel.h"
+#include "optics/optics.h"
+#include "radiosity/hierarchical/sources.h"
+#include "radiosity/hierarchical/transport.h"
+#include "radiosity/transfer/occlusion.h"
+#include "scene/camera_math.h"
+
+namespace bounce {
+namespace {
+
+// Sweeps of W = rho R + K W: importance that has bounced this many times
+// is counted, the rest (rho^n of it) is not; the weights need a factor of
+// two, not digits.
+constexpr int importance_sweeps = 8;
+
+// Follows one camera ray: each element it meets takes `weight`, and the
+// ray goes on through mirrors (kr) and glass (kt, unbent: the weights need
+// where the light goes roughly, not the image's exact place).
+void follow_ray(const patch_mesh& mesh, const scene& s, const form_factor_context& context, vec3 from, vec3 direction,
+                std::vector<double>& hits) {
+  const double reach = 4.0 * mesh.scene_diagonal;
+  double weight = 1.0;
+  for (int bounce = 0; bounce < 5 && weight > 1e-3; ++bounce) {
+    const occlusion_scene::crossing hit = context.occlusion->first_crossing(from, from + direction * reach);
+    if (hit.triangle < 0) return;
+    const std::size_t e = std::size_t(hit.triangle);
+    hits[e] += weight;
+    const material& m = s.materials[std::size_t(mesh.element_materials[e])];
+    const double kr = channel_max(m.kr), kt = channel_max(m.kt);
+    if (!(kr > 0.0) && !(kt > 0.0)) return;
+    const vec3 point = from + direction * (reach * hit.t);
+    const vec3& n = mesh.element_normals[e];
+    if (kr >= kt) {
+      direction = reflect(direction, n);
+      weight *= kr;
+    } else {
+      weight *= kt;
+    }
+    from = point + direction * context.offset;
+  }
+}
+
+}  // namespace
+
+std::vector<double> seen_density(const patch_mesh& mesh, const scene& s, const form_factor_context& context,
+                                 const camera& view, int rays_across) {
+  const double aspect = double(std::max(view.width, 1)) / double(std::max(view.height, 1));
+  const int columns = std::max(1, int(std::lround(rays_across * std::sqrt(aspect))));
+  const int rows = std::max(1, int(std::lround(rays_across / std::sqrt(aspect))));
+  const camera_rays rays(view);
+  tbb::enumerable_thread_specific<std::vector<double>> per_thread(
+      [&] { return std::vector<double>(mesh.element_count(), 0.0); });
+  for_each_block(true, std::size_t(rows), 4, [&](std::size_t begin, std::size_t end) {
+    std::vector<double>& hits = per_thread.local();
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < columns; ++x) {
+        const double px = (x + 0.5) * view.width / columns, py = (double(y) + 0.5) * view.height / rows;
+        follow_ray(mesh, s, context, view.eye, rays.direction(px, py), hits);
+      }
+  });
+  std::vector<double> density(mesh.element_count(), 0.0);
+  for (const std::vector<double>& hits : per_thread)
+    for (std::size_t e = 0; e < density.size(); ++e) density[e] += hits[e];
+  for (std::size_t e = 0; e < density.size(); ++e)
+    density[e] = mesh.element_areas[e] > 0.0 ? density[e] / mesh.element_areas[e] : 0.0;
+  return density;
+}
+
+void set_view(hierarchical_solver& solver, const camera& view) {
+  solver.view.seen = seen_density(*solver.meshes.input, *solver.source, solver.context, view, 256);
+  solver.view.node.clear();
+  solver.view.retarget = true;
+}
+
+void update_view_weights(hierarchical_solver& solver) {
+  solver.view.node.clear();
+  if (solver.view.seen.empty() || solver.hierarchy.links.empty()) return;
+  const std::size_t n = solver.mesh().element_count();
+  const link_hierarchy& h = solver.hierarchy;
+  std::vector<rgb> seen(n), leaving(n), gathered(n), mirrored(n);
+  for (std::size_t e = 0; e < n; ++e) seen[e] = rgb(solver.view.seen[std::size_t(solver.meshes.input_element[e])]);
+  // Y = R + the importance gathered from W; W = rho Y.
+  std::vector<rgb> passed_on = seen;
+  for (int sweep = 0; sweep < importance_sweeps; ++sweep) {
+    for (std::size_t e = 0; e < n; ++e) leaving[e] = h.rho[e] * passed_on[e];
+    gather_push(solver, leaving, gathered, &mirrored);
+    ++solver.progress.operator_applications;
+    for (std::size_t e = 0; e < n; ++e) passed_on[e] = seen[e] + gathered[e] * h.normalizer[e] + mirrored[e];
+  }
+  // The picture's reflected light, sum A (Y - R) (E + lamp): the emitters
+  // seen straight are no link's business. None lit, no lead.
+  const std::vector<rgb> rhs = right_hand_side(solver);
+  double picture = 0.0;
+  for (std::size_t e = 0; e < n; ++e)
+    picture += solver.mesh().element_areas[e] * channel_sum((passed_on[e] - seen[e]) * rhs[e]);
+  if (!(picture > 0.0) || !(solver.sources.emitted_power > 0.0)) return;
+  std::vector<rgb> node_y(solver.hierarchy.tree.nodes.size());
+  pull(solver, passed_on, node_y, nullptr);
+  const double scale = solver.sources.emitted_power / picture;
+  solver.view.node.resize(node_y.size());
+  for (std::size_t i = 0; i < node_y.size(); ++i) solver.view.node[i] = channel_max(node_y[i]) * scale;
+}
+
+}  // namespace bounce
