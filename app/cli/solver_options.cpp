@@ -81,6 +81,18 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->check(number_in(0.0, INFINITY, true));
 }
 
+void add_view_led_option(CLI::App& command, bool& view_led) {
+  command.add_flag("--view-led", view_led,
+                   "hierarchical: the camera leads refinement (importance): what the picture shows is refined "
+                   "first and the rest of the scene only as far as it lights it");
+}
+
+std::string check_view_led_option(const CLI::App& command, const solver_settings& settings) {
+  if (command.count("--view-led") && settings.method != solver_method::hierarchical)
+    return "--view-led applies to --solver hierarchical only";
+  return {};
+}
+
 std::span<const char* const> solver_option_names() {
   static constexpr const char* names[] = {"--solver",     "--link-tolerance", "--mirror-depth", "--method",
                                           "--max-edge",   "--until",          "--max-steps",    "--time",

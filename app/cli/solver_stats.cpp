@@ -69,6 +69,8 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                            {"element_passes", h.progress.element_passes},
                            {"elements_marked", h.progress.split_marks},
                            {"closed_scene", h.progress.closed},
+                           // Refinement led by the camera (--view-led).
+                           {"view_led", !h.view.seen.empty()},
                            {"final_gather_evaluations", h.progress.gather_evaluations},
                            // Diffuse light passed on by mirrors and glass (D S+ D).
                            {"specular_passes", h.progress.specular_passes},

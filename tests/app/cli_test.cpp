@@ -320,11 +320,26 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"trace --adaptive --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
       {"solve --solver hierarchical --reference", "--reference applies to --solver progressive only"},
       {"solve --reference --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
+      {"render --solver progressive --view-led", "--view-led applies to --solver hierarchical only"},
+      {"trace --adaptive --view-led", "--view-led applies to --solver hierarchical only"},
   };
   for (const auto& [args, message] : cases) {
     run_result r = run(args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+// --view-led hands the command's camera to the solver, and the statistics
+// say so; without it the solve is view-independent.
+TEST(Cli, ViewLedRenderSaysItsCameraLedTheSolve) {
+  scratch_dir dir;
+  for (const bool led : {false, true}) {
+    const std::string stats = dir.path(led ? "led.json" : "plain.json");
+    const run_result r = run(std::string("render --size 64x64 --until 0.05 --out ") + dir.path("x.png") + " --stats " +
+                             stats + (led ? " --view-led" : ""));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(read_text(stats))["hierarchical"]["view_led"], led);
   }
 }
 
