@@ -52,6 +52,17 @@ bool inside_wedge(const int_point& a, const int_point& b, const int_point& c, co
   return orient(o, to_c, d) > 0 || orient(o, d, to_a) > 0;                           // reflex (or straight)
 }
 
+double smallest_angle(const int_point& a, const int_point& b, const int_point& c) {
+  const vec2 p[3] = {vec2(double(a.x), double(a.y)), vec2(double(b.x), double(b.y)), vec2(double(c.x), double(c.y))};
+  double smallest = INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    const vec2 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+    const double cosine = glm::dot(u, v) / std::max(glm::length(u) * glm::length(v), 1e-300);
+    smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)));
+  }
+  return smallest;
+}
+
 // Whether d lies strictly inside the circle through a, b, c (counter-
 // clockwise). Exact: coordinates within +-2^29.
 bool in_circle(const int_point& a, const int_point& b, const int_point& c, const int_point& d) {
@@ -254,8 +265,10 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
     ring = std::move(merged);
   }
 
-  // Ear clipping on the ring, the first ear found from where the last was
-  // cut: the flips below make the shapes, whichever ears were taken.
+  // Ear clipping on the ring, taking the best-shaped ear each time (the
+  // largest smallest angle; the first ear found on large rings, where the
+  // search would cost too much). The flips below settle the shapes, but
+  // where corners are cocircular (a rectangle's) the ears decide.
   const int n = int(ring.size());
   std::vector<int> prev(n), next(n);
   for (int i = 0; i < n; ++i) {
@@ -288,9 +301,17 @@ std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_poi
   int left = n, cursor = 0;
   while (left > 3) {
     int chosen = -1;
+    double chosen_quality = -1.0;
     int i = cursor;
-    for (int step = 0; step < left && chosen < 0; ++step, i = next[i])
-      if (is_ear(i)) chosen = i;
+    for (int step = 0; step < left; ++step, i = next[i]) {
+      if (!is_ear(i)) continue;
+      const double quality = smallest_angle(points[ring[prev[i]]], points[ring[i]], points[ring[next[i]]]);
+      if (quality > chosen_quality) {
+        chosen = i;
+        chosen_quality = quality;
+      }
+      if (left > 256) break;
+    }
     if (chosen < 0) {
       // No ear: only straight corners block (or the input is not simple).
       // Dropping a straight corner keeps the area; anything else fails.
