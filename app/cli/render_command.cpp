@@ -40,7 +40,7 @@ std::vector<unsigned char> drop_alpha(const std::vector<unsigned char>& rgba) {
 void add_render_options(CLI::App& command, render_options& options) {
   add_scene_argument(command, options.scene);
   add_solver_options(command, options.solver);
-  add_view_led_option(command, options.view_led);
+  add_view_independent_option(command, options.view_independent);
   add_camera_options(command, options.camera);
   command
       .add_option("--out", options.out_path,
@@ -80,7 +80,7 @@ void add_render_options(CLI::App& command, render_options& options) {
 
 std::string check_render_options(const CLI::App& command, render_options& options) {
   if (std::string e = check_solver_options(command, options.solver); !e.empty()) return e;
-  if (std::string e = check_view_led_option(command, options.solver); !e.empty()) return e;
+  if (std::string e = check_view_independent_option(command, options.solver); !e.empty()) return e;
   if (std::string e = check_png_only(command, {"--panel", "--tone", "--exposure"}, options.out_path); !e.empty())
     return e;
   if (!options.frames_dir.empty()) {
@@ -102,7 +102,7 @@ int run_render(const render_options& options) {
 
 int render_scene(const scene& s, const render_options& options) {
   solver_settings solver = options.solver;
-  if (options.view_led) solver.view = s.view;
+  if (!options.view_independent) solver.view = s.view;  // the picture leads (hierarchical only)
   solve_setup setup;
   if (!start_command_solve(s, solver, setup)) return exit_input_error;
   std::string error;

@@ -17,7 +17,7 @@ namespace bounce {
 struct render_options {
   std::string scene;                    // SCENE; empty: the embedded Cornell box
   solver_settings solver;               // the solver options
-  bool view_led = false;                // --view-led: the camera leads refinement
+  bool view_independent = false;        // --view-independent: the camera does not lead refinement
   camera_options camera;                // the camera overrides
   std::string out_path = "bounce.png";  // --out: the extension picks the format
   std::string pfm_path;                 // --pfm: also linear radiance

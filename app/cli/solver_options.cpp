@@ -81,15 +81,15 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->check(number_in(0.0, INFINITY, true));
 }
 
-void add_view_led_option(CLI::App& command, bool& view_led) {
-  command.add_flag("--view-led", view_led,
-                   "hierarchical: the camera leads refinement (importance): what the picture shows is refined "
-                   "first and the rest of the scene only as far as it lights it");
+void add_view_independent_option(CLI::App& command, bool& view_independent) {
+  command.add_flag("--view-independent", view_independent,
+                   "hierarchical: refine every part of the scene alike; by default the camera leads refinement "
+                   "(importance): what the picture shows first, the rest only as far as it lights it");
 }
 
-std::string check_view_led_option(const CLI::App& command, const solver_settings& settings) {
-  if (command.count("--view-led") && settings.method != solver_method::hierarchical)
-    return "--view-led applies to --solver hierarchical only";
+std::string check_view_independent_option(const CLI::App& command, const solver_settings& settings) {
+  if (command.count("--view-independent") && settings.method != solver_method::hierarchical)
+    return "--view-independent applies to --solver hierarchical only";
   return {};
 }
 

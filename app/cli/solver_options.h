@@ -25,10 +25,11 @@ std::span<const char* const> solver_option_names();
 // alone choose it (settings.method) unless another was asked for by name.
 std::string check_solver_options(const CLI::App& command, solver_settings& settings);
 
-// --view-led, for the commands with a picture (render, trace): their
-// camera leads the hierarchical solver's refinement (settings.view). The
+// The commands with a picture (render, trace) let their camera lead the
+// hierarchical solver's refinement (settings.view); --view-independent
+// refines every part of the scene alike, as `solve` and the window do. The
 // check refuses it with another solver.
-void add_view_led_option(CLI::App& command, bool& view_led);
-std::string check_view_led_option(const CLI::App& command, const solver_settings& settings);
+void add_view_independent_option(CLI::App& command, bool& view_independent);
+std::string check_view_independent_option(const CLI::App& command, const solver_settings& settings);
 
 }  // namespace bounce

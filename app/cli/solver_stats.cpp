@@ -69,7 +69,7 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                            {"element_passes", h.progress.element_passes},
                            {"elements_marked", h.progress.split_marks},
                            {"closed_scene", h.progress.closed},
-                           // Refinement led by the camera (--view-led).
+                           // Refinement led by the camera (render and trace, unless --view-independent).
                            {"view_led", !h.view.seen.empty()},
                            {"final_gather_evaluations", h.progress.gather_evaluations},
                            // Diffuse light passed on by mirrors and glass (D S+ D).

@@ -56,7 +56,7 @@ bool solve(const scene& s, const solver_settings& solver, solved& out) {
 void add_trace_options(CLI::App& command, trace_options& options) {
   add_scene_argument(command, options.scene);
   add_solver_options(command, options.solver);
-  add_view_led_option(command, options.view_led);
+  add_view_independent_option(command, options.view_independent);
   add_camera_options(command, options.camera);
   command
       .add_option("--out", options.out_path,
@@ -185,7 +185,7 @@ std::string check_integrator_options(const CLI::App& command, const trace_option
 
 std::string check_trace_options(const CLI::App& command, trace_options& options) {
   if (std::string e = check_solver_options(command, options.solver); !e.empty()) return e;
-  if (std::string e = check_view_led_option(command, options.solver); !e.empty()) return e;
+  if (std::string e = check_view_independent_option(command, options.solver); !e.empty()) return e;
   if (std::string e = check_integrator_options(command, options); !e.empty()) return e;
   if (std::string e = check_png_only(command, {"--exposure"}, options.out_path); !e.empty()) return e;
   return check_output_files(
@@ -197,7 +197,7 @@ namespace {
 // Solves `s` (the radiosity pass) and traces its camera's still.
 int trace_scene(const scene& s, const trace_options& options) {
   solver_settings solver = options.solver;
-  if (options.view_led) solver.view = s.view;
+  if (!options.view_independent) solver.view = s.view;  // the picture leads (hierarchical only)
   trace_params params;
   params.method = options.integrator == "path"      ? integrator::path
                   : options.integrator == "twopass" ? integrator::twopass

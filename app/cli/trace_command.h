@@ -19,7 +19,7 @@ namespace bounce {
 struct trace_options {
   std::string scene;                          // SCENE; empty: the embedded Cornell box
   solver_settings solver;                     // the solver options: the radiosity pass
-  bool view_led = false;                      // --view-led: the camera leads the radiosity pass's refinement
+  bool view_independent = false;              // --view-independent: the camera does not lead the radiosity pass
   camera_options camera;                      // the camera overrides
   std::string out_path = "bounce-trace.png";  // --out
   std::string pfm_path;                       // --pfm: linear radiance

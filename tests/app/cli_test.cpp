@@ -320,8 +320,8 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"trace --adaptive --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
       {"solve --solver hierarchical --reference", "--reference applies to --solver progressive only"},
       {"solve --reference --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
-      {"render --solver progressive --view-led", "--view-led applies to --solver hierarchical only"},
-      {"trace --adaptive --view-led", "--view-led applies to --solver hierarchical only"},
+      {"render --solver progressive --view-independent", "--view-independent applies to --solver hierarchical only"},
+      {"trace --adaptive --view-independent", "--view-independent applies to --solver hierarchical only"},
   };
   for (const auto& [args, message] : cases) {
     run_result r = run(args);
@@ -330,17 +330,20 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
   }
 }
 
-// --view-led hands the command's camera to the solver, and the statistics
-// say so; without it the solve is view-independent.
-TEST(Cli, ViewLedRenderSaysItsCameraLedTheSolve) {
+// render hands its camera to the solver, and the statistics say so;
+// --view-independent keeps it out; solve has no camera to hand.
+TEST(Cli, RenderSaysItsCameraLedTheSolve) {
   scratch_dir dir;
   for (const bool led : {false, true}) {
     const std::string stats = dir.path(led ? "led.json" : "plain.json");
     const run_result r = run(std::string("render --size 64x64 --until 0.05 --out ") + dir.path("x.png") + " --stats " +
-                             stats + (led ? " --view-led" : ""));
+                             stats + (led ? "" : " --view-independent"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(read_text(stats))["hierarchical"]["view_led"], led);
   }
+  const std::string stats = dir.path("solve.json");
+  ASSERT_EQ(run("solve --until 0.05 --stats " + stats).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(read_text(stats))["hierarchical"]["view_led"], false);
 }
 
 // --mirror-depth sets how many planar mirrors the hierarchical solver's
@@ -365,10 +368,11 @@ TEST(Cli, MirrorDepthSetsTheChainsOfPlanarMirrors) {
 }
 
 // --max-edge with --no-radiosity sets the coarse solution the ambient term
-// comes from (it was replaced by twice the default).
+// comes from (it was replaced by twice the default). View-independent, as
+// solve is: a camera-led solve splits other elements.
 TEST(Cli, OnePassAmbientSolutionTakesTheMaxEdge) {
   scratch_dir dir;
-  const std::string fast = " --until 0.2 --size 8x8 --out " + dir.path("a.png");
+  const std::string fast = " --view-independent --until 0.2 --size 8x8 --out " + dir.path("a.png");
   run_result r = run("trace --no-radiosity --max-edge 150" + fast + " --stats " + dir.path("a.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   r = run("solve --max-edge 150 --until 0.2 --stats " + dir.path("b.json"));

@@ -84,26 +84,32 @@ void update_view_weights(hierarchical_solver& solver) {
   if (solver.view.seen.empty() || solver.hierarchy.links.empty()) return;
   const std::size_t n = solver.mesh().element_count();
   const link_hierarchy& h = solver.hierarchy;
-  std::vector<rgb> seen(n), leaving(n), gathered(n), mirrored(n);
+  std::vector<rgb> seen(n), sent(n), gathered(n), mirrored(n);
   for (std::size_t e = 0; e < n; ++e) seen[e] = rgb(solver.view.seen[std::size_t(solver.meshes.input_element[e])]);
   // Y = R + the importance gathered from W; W = rho Y.
   std::vector<rgb> passed_on = seen;
   for (int sweep = 0; sweep < importance_sweeps; ++sweep) {
-    for (std::size_t e = 0; e < n; ++e) leaving[e] = h.rho[e] * passed_on[e];
-    gather_push(solver, leaving, gathered, &mirrored);
+    for (std::size_t e = 0; e < n; ++e) sent[e] = h.rho[e] * passed_on[e];
+    gather_push(solver, sent, gathered, &mirrored);
     ++solver.progress.operator_applications;
     for (std::size_t e = 0; e < n; ++e) passed_on[e] = seen[e] + gathered[e] * h.normalizer[e] + mirrored[e];
   }
-  // The picture's reflected light, sum A (Y - R) (E + lamp): the emitters
-  // seen straight are no link's business. None lit, no lead.
-  const std::vector<rgb> rhs = right_hand_side(solver);
-  double picture = 0.0;
-  for (std::size_t e = 0; e < n; ++e)
-    picture += solver.mesh().element_areas[e] * channel_sum((passed_on[e] - seen[e]) * rhs[e]);
-  if (!(picture > 0.0) || !(solver.sources.emitted_power > 0.0)) return;
+  // Scaled so that a scene seen evenly weighs 1: the power leaving all
+  // surfaces over what it brings the picture through all bounces,
+  // sum A (Y B - R E) (emitters seen straight are no link's business). A
+  // view of one room of a building then weighs that room by the building's
+  // power over the room's. No light in the picture: no lead.
+  const std::vector<rgb>& b = solver.light.total;
+  double power = 0.0, picture = 0.0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const double area = solver.mesh().element_areas[e];
+    power += area * channel_sum(b[e]);
+    picture += area * channel_sum(passed_on[e] * b[e] - seen[e] * solver.sources.emission[e]);
+  }
+  if (!(picture > 0.0) || !(power > 0.0)) return;
   std::vector<rgb> node_y(solver.hierarchy.tree.nodes.size());
   pull(solver, passed_on, node_y, nullptr);
-  const double scale = solver.sources.emitted_power / picture;
+  const double scale = power / picture;
   solver.view.node.resize(node_y.size());
   for (std::size_t i = 0; i < node_y.size(); ++i) solver.view.node[i] = channel_max(node_y[i]) * scale;
 }
