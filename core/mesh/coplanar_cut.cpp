@@ -379,10 +379,8 @@ std::vector<plane_group> plane_groups(const std::vector<triangle_mesh>& tessella
   };
   std::unordered_map<std::uint64_t, std::vector<int>, cell_hash> cells;
   const double cos_max = std::cos(coplanar_max_angle);
-  std::vector<int> recent;
   for (std::size_t s = 0; s < tessellated.size(); ++s) {
     if (!flat[s]) continue;
-    recent.clear();
     const triangle_mesh& m = tessellated[s];
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
       const vec3 cross = triangle_cross(m, int(t));
@@ -400,14 +398,7 @@ std::vector<plane_group> plane_groups(const std::vector<triangle_mesh>& tessella
         return (std::uint64_t(x + bias) << 42) | (std::uint64_t(y + bias) << 21) | std::uint64_t(z + bias);
       };
       const auto [cx, cy, cz] = cell(n);
-      // A surface's triangles mostly lie in a few planes (a box's six): the
-      // groups it already met are tried before the search of 27 cells.
       int found = -1;
-      for (int g : recent)
-        if (glm::dot(by_normal[std::size_t(g)].normal, n) >= cos_max) {
-          found = g;
-          break;
-        }
       const auto search = [&](long long x, long long y, long long z) {
         auto it = cells.find(packed(x, y, z));
         if (it == cells.end()) return;
@@ -417,7 +408,7 @@ std::vector<plane_group> plane_groups(const std::vector<triangle_mesh>& tessella
             return;
           }
       };
-      if (found < 0) search(cx, cy, cz);  // then the normal's own cell
+      search(cx, cy, cz);  // the normal's own cell first: it nearly always holds the group
       for (long long dx = -1; dx <= 1 && found < 0; ++dx)
         for (long long dy = -1; dy <= 1 && found < 0; ++dy)
           for (long long dz = -1; dz <= 1 && found < 0; ++dz)
@@ -428,7 +419,6 @@ std::vector<plane_group> plane_groups(const std::vector<triangle_mesh>& tessella
         cells[packed(cx, cy, cz)].push_back(found);
       }
       by_normal[found].triangles.push_back({int(s), int(t), 0.0});
-      if (std::find(recent.begin(), recent.end(), found) == recent.end() && recent.size() < 8) recent.push_back(found);
     }
   }
   // Then by offset along the normal: sorted, split where neighbours are
@@ -1136,21 +1126,15 @@ chained_loops closed_loops(const crossing_segments& s, const ClipperLib::IntRect
   return out;
 }
 
-// The part's box in its plane's integer frame, shrunk by `margin`.
-ClipperLib::IntRect inner_box(const std::vector<triangle_mesh>& tessellated, const contact_part& part, double margin) {
+// The part's box in its plane's integer frame.
+ClipperLib::IntRect plane_box(const std::vector<triangle_mesh>& tessellated, const contact_part& part) {
   ClipperLib::Path corners;
   for (const triangle_ref& r : part.plane.triangles) {
     const triangle_mesh& m = tessellated[std::size_t(r.surface)];
     for (int k = 0; k < 3; ++k)
       corners.push_back(part.frame.project(m.positions[m.triangles[std::size_t(r.triangle)][k]]));
   }
-  ClipperLib::IntRect box = box_of(corners);
-  const long long shrink = std::llround(margin / part.frame.unit);
-  box.left += shrink;
-  box.top += shrink;
-  box.right -= shrink;
-  box.bottom -= shrink;
-  return box;
+  return box_of(corners);
 }
 
 // Whether the inside of `loop` is closed above: straight up from a point
@@ -1324,7 +1308,10 @@ contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, c
     const std::vector<std::pair<int, int>> over_part = crossing_near(tessellated, grid, part, lift, 2.0 * lift);
     if (over_part.size() < 3) continue;
     crossing_segments segments = segments_of(tessellated, over_part, part);
-    const ClipperLib::IntRect part_box = inner_box(tessellated, part, 2.0 * lift);
+    const ClipperLib::IntRect whole_box = plane_box(tessellated, part);
+    const long long margin = std::llround(2.0 * lift / part.frame.unit);
+    const ClipperLib::IntRect part_box{whole_box.left + margin, whole_box.top + margin, whole_box.right - margin,
+                                       whole_box.bottom - margin};
     chained_loops loops = closed_loops(segments, part_box);
     // A chain that leaves the part: search again as far as the part
     // reaches. A solid that overhangs the part by more than that (a long
@@ -1336,7 +1323,6 @@ contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, c
     }
     // Loops off the part (a wide search meets its neighbours' solids) are
     // neither cut nor counted.
-    const ClipperLib::IntRect whole_box = inner_box(tessellated, part, 0.0);
     ClipperLib::Paths cover;
     for (ClipperLib::Path& loop : loops.closed) {
       const ClipperLib::IntRect b = box_of(loop);
