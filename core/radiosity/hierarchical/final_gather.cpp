@@ -70,6 +70,10 @@ struct gathered_sum {
 // longer hold there (a vertex on the edge a wall shares with its lamp).
 constexpr double near_ratio = 0.5;
 
+bool near(const cluster_node& source, const vec3& p) {
+  return source.radius() > near_ratio * glm::length(source.centroid - p);
+}
+
 // A link's correction (strata over disc estimate at its receiver's centre)
 // is carried to the vertices only while the two agree within this factor.
 // Where they do not, the disc estimate is ill-conditioned there (a source
@@ -77,9 +81,6 @@ constexpr double near_ratio = 0.5;
 // blotches on walls at fine tolerances (interior-10k: 3.5% at 1e-5, 7.2% at
 // 5e-6 from the path tracer; 3.5% and 3.1% since).
 constexpr double correction_trust = 2.0;
-bool near(const cluster_node& source, const vec3& p) {
-  return source.radius() > near_ratio * glm::length(source.centroid - p);
-}
 
 struct gather_inputs {
   const hierarchical_solver& solver;
@@ -103,6 +104,16 @@ struct gather_inputs {
     return point_polygon_form_factor(p, n, element_corners(mesh, e));
   }
 
+  // An inner source by its strata estimate at p, sending its radiosity
+  // towards p.
+  void strata_source(int source, const vec3& p, const vec3& n, double weight, gathered_sum& out) const {
+    vec3 towards;
+    double send = 0.0;
+    disc_factor(solver.hierarchy.tree.nodes[std::size_t(source)], p, &n, towards, send);
+    const double f = strata_factor(solver.hierarchy.tree, solver.mesh(), source, p, n);
+    if (f > 0.0) add(source, weight * f, -towards, send, out);
+  }
+
   // A near inner source, child by child: elements by Lambert's formula,
   // near children the same way down, the others by their strata estimate
   // at p. Each child sends its own radiosity. `weight`: the vertex's share
@@ -118,11 +129,7 @@ struct gather_inputs {
       } else if (near(child, p)) {
         near_source(c, p, n, weight, out);
       } else {
-        vec3 towards;
-        double send = 0.0;
-        disc_factor(child, p, &n, towards, send);
-        const double f = strata_factor(tree, solver.mesh(), c, p, n);
-        if (f > 0.0) add(c, weight * f, -towards, send, out);
+        strata_source(c, p, n, weight, out);
       }
     }
   }
@@ -213,12 +220,12 @@ bool final_gather(hierarchical_solver& solver) {
             if (f > 0.0) inputs.add(link.source, weight * f, vec3(0.0), 0.0, plain);
           } else if (near(src, p)) {
             inputs.near_source(link.source, p, normal, weight, plain);
+          } else if (correction[l] < 0.0f) {
+            inputs.strata_source(link.source, p, normal, weight, plain);
           } else {
             vec3 towards;
             double send = 0.0;
-            const double disc = disc_factor(src, p, &normal, towards, send);
-            const double f = correction[l] >= 0.0f ? std::min(1.0, disc * double(correction[l]))
-                                                   : strata_factor(tree, mesh, link.source, p, normal);
+            const double f = std::min(1.0, disc_factor(src, p, &normal, towards, send) * double(correction[l]));
             if (f > 0.0) inputs.add(link.source, weight * f, -towards, send, plain);
           }
         }

@@ -2,8 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <tbb/enumerable_thread_specific.h>
+#include <utility>
 
 #include "base/parallel.h"
 #include "optics/optics.h"
@@ -24,14 +23,14 @@ constexpr int importance_sweeps = 8;
 // ray goes on through mirrors (kr) and glass (kt, unbent: the weights need
 // where the light goes roughly, not the image's exact place).
 void follow_ray(const patch_mesh& mesh, const scene& s, const form_factor_context& context, vec3 from, vec3 direction,
-                std::vector<double>& hits) {
+                std::vector<std::pair<int, double>>& hits) {
   const double reach = 4.0 * mesh.scene_diagonal;
   double weight = 1.0;
   for (int bounce = 0; bounce < 5 && weight > 1e-3; ++bounce) {
     const occlusion_scene::crossing hit = context.occlusion->first_crossing(from, from + direction * reach);
     if (hit.triangle < 0) return;
     const std::size_t e = std::size_t(hit.triangle);
-    hits[e] += weight;
+    hits.emplace_back(hit.triangle, weight);
     const material& m = s.materials[std::size_t(mesh.element_materials[e])];
     const double kr = channel_max(m.kr), kt = channel_max(m.kt);
     if (!(kr > 0.0) && !(kt > 0.0)) return;
@@ -50,31 +49,31 @@ void follow_ray(const patch_mesh& mesh, const scene& s, const form_factor_contex
 }  // namespace
 
 std::vector<double> seen_density(const patch_mesh& mesh, const scene& s, const form_factor_context& context,
-                                 const camera& view, int rays_across) {
+                                 const camera& view, int rays_across, bool parallel) {
   const double aspect = double(std::max(view.width, 1)) / double(std::max(view.height, 1));
   const int columns = std::max(1, int(std::lround(rays_across * std::sqrt(aspect))));
   const int rows = std::max(1, int(std::lround(rays_across / std::sqrt(aspect))));
   const camera_rays rays(view);
-  tbb::enumerable_thread_specific<std::vector<double>> per_thread(
-      [&] { return std::vector<double>(mesh.element_count(), 0.0); });
-  for_each_block(true, std::size_t(rows), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<double>& hits = per_thread.local();
+  // Hits per row, summed in row order: the same weights whatever the threads.
+  std::vector<std::vector<std::pair<int, double>>> row_hits(static_cast<std::size_t>(rows));
+  for_each_block(parallel, std::size_t(rows), 4, [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < columns; ++x) {
         const double px = (x + 0.5) * view.width / columns, py = (double(y) + 0.5) * view.height / rows;
-        follow_ray(mesh, s, context, view.eye, rays.direction(px, py), hits);
+        follow_ray(mesh, s, context, view.eye, rays.direction(px, py), row_hits[y]);
       }
   });
   std::vector<double> density(mesh.element_count(), 0.0);
-  for (const std::vector<double>& hits : per_thread)
-    for (std::size_t e = 0; e < density.size(); ++e) density[e] += hits[e];
+  for (const auto& hits : row_hits)
+    for (const auto& [e, weight] : hits) density[std::size_t(e)] += weight;
   for (std::size_t e = 0; e < density.size(); ++e)
     density[e] = mesh.element_areas[e] > 0.0 ? density[e] / mesh.element_areas[e] : 0.0;
   return density;
 }
 
 void set_view(hierarchical_solver& solver, const camera& view) {
-  solver.view.seen = seen_density(*solver.meshes.input, *solver.source, solver.context, view, 256);
+  solver.view.seen =
+      seen_density(*solver.meshes.input, *solver.source, solver.context, view, 256, solver.params.parallel);
   solver.view.node.clear();
   solver.view.retarget = true;
 }

@@ -22,9 +22,10 @@ namespace bounce {
 
 // Per element of `mesh`: the camera's rays (about rays_across x
 // rays_across over the picture) that reach it, straight or through up to
-// four mirror and glass bounces weighted by kr and kt, per unit area.
+// four mirror and glass bounces weighted by kr and kt, per unit area; the
+// same whether the rays run on TBB's threads (`parallel`) or not.
 std::vector<double> seen_density(const patch_mesh& mesh, const scene& s, const form_factor_context& context,
-                                 const camera& view, int rays_across);
+                                 const camera& view, int rays_across, bool parallel);
 
 // Leads the solver's refinement by `view` from now on: the links and
 // elements already refined stay, and the next step refines again at the

@@ -105,6 +105,30 @@ TEST(ViewImportance, ANewViewKeepsWhatWasRefinedAndRefinesWhatItSees) {
   EXPECT_GE(solved_mesh(*solver).element_count(), elements_before);
 }
 
+// The camera's rays run on TBB's threads or on one: the weights, and so
+// the links, are the same.
+TEST(ViewImportance, TheWeightsAreTheSameOnOneThreadOrMany) {
+  const scene s = two_rooms();
+  const patch_mesh mesh = mesh_of(s, 0.5);
+  std::vector<double> weights[2];
+  std::size_t links[2];
+  for (const bool parallel : {false, true}) {
+    radiosity_params params = hierarchical(2e-5);
+    params.hierarchical.parallel = parallel;
+    params.view = s.view;
+    const auto solver = make_radiosity_solver(s, mesh, params);
+    solve(*solver, 1e-3);
+    weights[parallel] = hierarchical_of(*solver)->view.node;
+    links[parallel] = hierarchical_of(*solver)->hierarchy.links.size();
+  }
+  ASSERT_FALSE(weights[0].empty());
+  ASSERT_EQ(weights[0].size(), weights[1].size());
+  EXPECT_EQ(links[0], links[1]);
+  // The solution they are scaled by agrees to round-off (Hierarchical.ParallelAndSerialRunsAgree).
+  for (std::size_t i = 0; i < weights[0].size(); ++i)
+    EXPECT_NEAR(weights[0][i], weights[1][i], 1e-9 * std::max(1.0, weights[0][i])) << "node " << i;
+}
+
 // A view that sees no lit surface (it looks out of both rooms into
 // nothing) leads nothing: every receiver weighs 1.
 TEST(ViewImportance, AViewOfNothingLeavesTheSolveViewIndependent) {
