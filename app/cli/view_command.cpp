@@ -13,6 +13,7 @@ void add_view_options(CLI::App& command, view_options& options) {
   add_scene_argument(command, options.scene);
   add_solver_options(command, options.solver);
   add_camera_options(command, options.camera);
+  add_view_independent_option(command, options.view_independent);
   viewer_options& window = options.window;
   CLI::Option* frames = command.add_option("--frames", window.frames, "scripted run: draw this many frames")
                             ->check(CLI::Range(1, 1 << 30));
@@ -55,6 +56,7 @@ void add_view_options(CLI::App& command, view_options& options) {
 
 std::string check_view_options(const CLI::App& command, view_options& options) {
   if (std::string e = check_solver_options(command, options.solver); !e.empty()) return e;
+  if (std::string e = check_view_independent_option(command, options.solver); !e.empty()) return e;
   return check_output_files(
       {{"--screenshot", options.window.screenshot_path, false}, {"--still", options.window.still_path, false}});
 }
@@ -62,7 +64,11 @@ std::string check_view_options(const CLI::App& command, view_options& options) {
 int run_view(const view_options& options) {
   scene s;
   if (int code = load_for_command(options.scene, &options.camera, s); code != exit_ok) return code;
-  return run_viewer(s, options.solver, options.window);
+  solver_settings solver = options.solver;
+  // The scene camera leads the first steps; the window re-targets at its
+  // own camera whenever it rests (hierarchical only).
+  if (!options.view_independent && solver.method == solver_method::hierarchical) solver.view = s.view;
+  return run_viewer(s, solver, options.window);
 }
 
 }  // namespace bounce

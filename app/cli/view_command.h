@@ -15,10 +15,11 @@ class App;
 namespace bounce {
 
 struct view_options {
-  std::string scene;       // SCENE; empty: the embedded Cornell box
-  solver_settings solver;  // the solver options
-  camera_options camera;   // the camera overrides
-  viewer_options window;   // scripted runs, screenshots, start paused, ...
+  std::string scene;              // SCENE; empty: the embedded Cornell box
+  solver_settings solver;         // the solver options
+  camera_options camera;          // the camera overrides
+  viewer_options window;          // scripted runs, screenshots, start paused, ...
+  bool view_independent = false;  // --view-independent: the window's camera does not lead the solver
 };
 
 void add_view_options(CLI::App& command, view_options& options);

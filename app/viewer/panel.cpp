@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include <imgui.h>
 
@@ -133,6 +134,7 @@ void send_to_worker(const panel_actions& act, const panel_state& state, solver_w
   if (act.open_scene) worker.load_file(state.scene_path, settings_to_run(state.solver));
   if (act.apply_mesh) worker.reload(settings_to_run(state.solver));
   if (act.set_stop) worker.set_criterion(state.solver.stop);
+  if (act.set_view) worker.set_view(state.solver.view);
   if (act.pause) worker.pause();
   if (act.resume) worker.resume();
   if (act.step) worker.step();
@@ -216,6 +218,7 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
       else
         line("link tolerance %s, refining to %s", now.c_str(), format_tolerance(view.settings.link_tolerance).c_str());
     }
+    line(view.settings.view ? "led by the view" : "view-independent");
     line("%.2f s, %.2f Mrays/s", st.seconds, double(st.rays) / seconds * 1e-6);
   } else {
     line("elements %zu, vertices %zu, patches %zu", view.mesh->element_count(), view.mesh->vertex_count(),
@@ -391,9 +394,18 @@ void draw_solver_section(panel_state& state, const worker_view& view, panel_acti
   solver_settings& solver = state.solver;
   const bool hierarchical = solver.method == solver_method::hierarchical;
   draw_element_size(solver, view);
-  if (hierarchical)
+  if (hierarchical) {
     draw_link_tolerance(solver, act);
-  else
+    bool led = solver.view.has_value();
+    if (ImGui::Checkbox("led by the view", &led)) {
+      solver.view = led ? std::optional<camera>(state.current_camera) : std::nullopt;
+      act.set_view = true;
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "refine first what the window shows, again whenever the camera rests; off: every part of "
+          "the scene alike (what is refined stays either way)");
+  } else
     draw_form_factors(solver.form_factors);
   draw_stopping_point(solver.stop, hierarchical, act);
   if (!hierarchical) draw_adaptive_meshing(solver);

@@ -71,6 +71,7 @@ struct panel_actions {
   bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
   bool compute_reference = false;  // path trace a reference of the camera for the error plot
   bool set_stop = false;           // the stopping point changed: the running solver takes it
+  bool set_view = false;           // panel_state::solver.view changed: the running solver is led by it
   bool quit = false;               // close the window
   bool save_camera = false;        // write current_camera to camera_path
   bool add_bookmark = false;       // keep current_camera as a new bookmark

@@ -15,11 +15,12 @@ bool same_meshing(const mesher_params& a, const mesher_params& b) {
 }  // namespace
 
 struct solver_worker::command {
-  enum class kind { load, load_file, reload, pause, resume, step, restart, criterion } what;
+  enum class kind { load, load_file, reload, pause, resume, step, restart, criterion, view } what;
   scene s;
   std::string path;
   solver_settings settings;
   stop_criterion criterion;
+  std::optional<camera> view;
 };
 
 void convergence_log::push_back(const convergence_point& p) {
@@ -104,6 +105,13 @@ void solver_worker::set_criterion(const stop_criterion& criterion) {
   enqueue(std::move(c));
 }
 
+void solver_worker::set_view(const std::optional<camera>& view) {
+  auto c = std::make_unique<command>();
+  c->what = command::kind::view;
+  c->view = view;
+  enqueue(std::move(c));
+}
+
 void solver_worker::wait_idle() const {
   std::unique_lock lock(mutex_);
   went_idle_.wait(lock, [this] { return idle_; });
@@ -119,6 +127,7 @@ void solver_worker::handle(command& c) {
         error_ = report.error;  // the previous scene stays
         return;
       }
+      if (c.settings.view) c.settings.view = s.view;  // a scene opened is first led by its own camera
       c.s = std::move(s);
       [[fallthrough]];
     }
@@ -185,6 +194,13 @@ void solver_worker::handle(command& c) {
       break;
     case kind::criterion:
       criterion_ = c.criterion;
+      break;
+    case kind::view:
+      settings_.view = c.view;
+      if (solver_) {
+        set_solver_view(*solver_, c.view);
+        exhausted_ = false;  // the links are refined again for the new view
+      }
       break;
   }
 }

@@ -10,6 +10,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -92,6 +93,9 @@ class solver_worker {
   void step();     // one step, then paused
   void restart();  // back to B = E; running or paused as before
   void set_criterion(const stop_criterion& criterion);
+  // Leads the hierarchical solver's refinement by this camera from now on
+  // (none: every part alike), keeping what is refined; later reloads keep it.
+  void set_view(const std::optional<camera>& view);
 
   // The newest published view. Taking it asks for the next: the worker
   // builds a snapshot after a step only when the last one was taken (at

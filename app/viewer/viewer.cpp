@@ -80,6 +80,7 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.save_still_pfm |= b.save_still_pfm;
   a.compute_reference |= b.compute_reference;
   a.set_stop |= b.set_stop;
+  a.set_view |= b.set_view;
   a.quit |= b.quit;
   a.save_camera |= b.save_camera;
   a.add_bookmark |= b.add_bookmark;
@@ -112,6 +113,9 @@ class viewer_app {
   // Refinement at rest: starts it when the camera has rested, drops it when
   // anything the picture depends on changes, uploads new passes.
   void refine_at_rest(const worker_view& view);
+  // Importance from the window's camera: once the camera has rested, the
+  // solver's refinement is re-targeted at what the window shows.
+  void lead_solver(const worker_view& view);
   // The shown scene's bounds, found once per scene: a scan of every
   // vertex, too slow to repeat every frame on a large scene.
   const bounds3& bounds(const worker_view& view) {
@@ -158,6 +162,10 @@ class viewer_app {
   int rested_width_ = 0, rested_height_ = 0;
   std::shared_ptr<const radiosity_snapshot> refined_solution_;  // what the passes trace with
   std::shared_ptr<const scene> refined_source_;
+  // The camera the solver was last led by (its orbit and aspect), per scene.
+  std::shared_ptr<const scene> led_source_;
+  orbit_state led_orbit_;
+  int led_width_ = 0, led_height_ = 0;
   clock_type::time_point last_motion_ = clock_type::now();
 
   error_tracker errors_;  // error against time: a path-traced reference of the camera on request
@@ -385,6 +393,29 @@ void viewer_app::refine_at_rest(const worker_view& view) {
   panel_.refined_passes = refined_passes_;
 }
 
+void viewer_app::lead_solver(const worker_view& view) {
+  if (!view.source || width_ <= 0 || height_ <= 0) return;
+  if (view.source != led_source_) {  // a scene (re)opened: the worker leads it by its own camera
+    led_source_ = view.source;
+    led_orbit_ = orbit_from_camera(view.source->view);
+    led_width_ = view.source->view.width;
+    led_height_ = view.source->view.height;
+  }
+  if (!panel_.solver.view) return;  // view-independent
+  const double rested = std::chrono::duration<double>(clock_type::now() - last_motion_).count();
+  // The picture's size matters only by its shape: the seen density is of rays across it.
+  const bool same_shape = std::int64_t(width_) * led_height_ == std::int64_t(height_) * led_width_;
+  if (rested < rest_seconds || (same_view(orbit_, led_orbit_) && same_shape)) return;
+  camera cam = camera_from_orbit(orbit_, scene_camera_);
+  cam.width = width_;
+  cam.height = height_;
+  panel_.solver.view = cam;  // reloads keep it
+  worker_.set_view(cam);
+  led_orbit_ = orbit_;
+  led_width_ = width_;
+  led_height_ = height_;
+}
+
 void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
   send_to_worker(act, panel_, worker_);  // a reload keeps the scene on the worker: no copy here
   if (act.frame_scene) orbit_frame(orbit_, bounds(view), scene_camera_.fov_y_degrees);
@@ -471,6 +502,7 @@ int viewer_app::run() {
     }
     glfwGetFramebufferSize(window_, &width_, &height_);
     refine_at_rest(*view);
+    lead_solver(*view);
     const panel_actions act = draw(*view, frame, keys);
     glfwSwapBuffers(window_);
     if (uploaded_mesh_ && timing_.first_mesh_ms < 0.0) timing_.first_mesh_ms = milliseconds_since(started_);

@@ -99,7 +99,7 @@ void restart_solver(radiosity_solver& solver) {
   update_stats(solver, 0.0);
 }
 
-void set_solver_view(radiosity_solver& solver, const camera& view) {
+void set_solver_view(radiosity_solver& solver, const std::optional<camera>& view) {
   auto* run = std::get_if<std::unique_ptr<hierarchical_run>>(&solver.state);
   if (!run) return;
   set_view(*(*run)->solver, view);

@@ -58,10 +58,10 @@ void restart_solver(radiosity_solver& solver);
 // nothing is left to do.
 bool step_solver(radiosity_solver& solver);
 
-// Leads the solver's refinement by `view` from now on (the hierarchical
-// solver: view_importance.h), keeping what is refined; the progressive
-// solver is view-independent and ignores it.
-void set_solver_view(radiosity_solver& solver, const camera& view);
+// Leads the solver's refinement by `view` from now on, or by no view
+// (the hierarchical solver: view_importance.h), keeping what is refined;
+// the progressive solver is view-independent and ignores it.
+void set_solver_view(radiosity_solver& solver, const std::optional<camera>& view);
 
 // True when the solver's progress meets `stop`.
 bool stop_reached(const radiosity_solver& solver, const stop_criterion& stop);

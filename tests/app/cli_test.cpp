@@ -327,6 +327,7 @@ TEST(Cli, OptionsThatWouldBeIgnoredAreRefused) {
       {"solve --reference --link-tolerance 1e-4", "--link-tolerance applies to --solver hierarchical only"},
       {"render --solver progressive --view-independent", "--view-independent applies to --solver hierarchical only"},
       {"trace --adaptive --view-independent", "--view-independent applies to --solver hierarchical only"},
+      {"view --solver progressive --view-independent", "--view-independent applies to --solver hierarchical only"},
   };
   for (const auto& [args, message] : cases) {
     run_result r = run(args);

@@ -62,6 +62,44 @@ TEST(SolverWorker, HierarchicalPublishesEveryStepAndConverges) {
   EXPECT_EQ(view->solution->radiosity.size(), view->mesh->vertex_count());
 }
 
+// The window re-targets its solver as the camera comes to rest: a close-up
+// of one corner is refined further where it looks, and nothing refined
+// before is undone; no view at all refines what the close-up left coarse.
+TEST(SolverWorker, ReTargetsAtANewViewAndKeepsWhatIsRefined) {
+  solver_worker worker;
+  const scene box = test_support::default_cornell_box();
+  solver_settings settings;  // the default solver
+  settings.max_edge = 60;
+  settings.stop.remaining = 0.01;
+  settings.view = box.view;
+  worker.load(box, settings);
+  worker.wait_idle();
+  const auto led = worker.latest();
+  ASSERT_TRUE(led->converged);
+  ASSERT_TRUE(led->settings.view);
+  const std::uint64_t links_led = led->solution->stats.links;
+
+  camera close_up = box.view;  // the floor's front left corner, seen from above
+  close_up.eye = vec3(60, 200, 60);
+  close_up.target = vec3(0, 0, 0);
+  close_up.fov_y_degrees = 20;
+  worker.set_view(close_up);
+  worker.wait_idle();
+  const auto retargeted = worker.latest();
+  EXPECT_TRUE(retargeted->converged);
+  EXPECT_EQ(retargeted->run, led->run) << "a new view is not a new run";
+  ASSERT_TRUE(retargeted->settings.view);
+  EXPECT_EQ(retargeted->settings.view->eye, close_up.eye);
+  EXPECT_GT(retargeted->solution->stats.links, links_led);
+
+  worker.set_view(std::nullopt);
+  worker.wait_idle();
+  const auto independent = worker.latest();
+  EXPECT_TRUE(independent->converged);
+  EXPECT_FALSE(independent->settings.view);
+  EXPECT_GT(independent->solution->stats.links, retargeted->solution->stats.links);
+}
+
 TEST(SolverWorker, PauseStepAndRestart) {
   solver_worker worker;
   worker.load(test_support::default_cornell_box(), coarse(1e-9));

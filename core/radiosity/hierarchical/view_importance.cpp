@@ -71,9 +71,11 @@ std::vector<double> seen_density(const patch_mesh& mesh, const scene& s, const f
   return density;
 }
 
-void set_view(hierarchical_solver& solver, const camera& view) {
-  solver.view.seen =
-      seen_density(*solver.meshes.input, *solver.source, solver.context, view, 256, solver.params.parallel);
+void set_view(hierarchical_solver& solver, const std::optional<camera>& view) {
+  solver.view.seen.clear();
+  if (view)
+    solver.view.seen =
+        seen_density(*solver.meshes.input, *solver.source, solver.context, *view, 256, solver.params.parallel);
   solver.view.node.clear();
   solver.view.retarget = true;
 }

@@ -14,6 +14,7 @@
 // stays coarse, so the part in view is refined as if it were the scene.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "radiosity/hierarchical/state.h"
@@ -27,10 +28,10 @@ namespace bounce {
 std::vector<double> seen_density(const patch_mesh& mesh, const scene& s, const form_factor_context& context,
                                  const camera& view, int rays_across, bool parallel);
 
-// Leads the solver's refinement by `view` from now on: the links and
-// elements already refined stay, and the next step refines again at the
-// current tolerance for the new view.
-void set_view(hierarchical_solver& solver, const camera& view);
+// Leads the solver's refinement by `view` from now on, or by no view
+// (every part of the scene alike): the links and elements already refined
+// stay, and the next step refines again at the current tolerance.
+void set_view(hierarchical_solver& solver, const std::optional<camera>& view);
 
 // Remakes the receivers' weights (view_weights::node) from the seen
 // density and the links as they stand; with no view, or no links yet, or
