@@ -25,6 +25,7 @@
 #include "bench/bench_references.h"
 #include "bench/bench_report.h"
 #include "bench/bench_suites.h"
+#include "bench/bench_walkthrough.h"
 #include "common/exit_code.h"
 #include "measure/bench.h"
 #include "scene/procedural.h"
@@ -224,8 +225,11 @@ void add_bench_options(CLI::App& command, bench_options& options) {
               "--suite", options.suite,
               "quick: every method once, under 2 minutes; full: under 20; adaptive: adaptive vs uniform meshes "
               "(Cornell box); scale: procedural scenes of 10k to 1M triangles, hierarchical vs progressive; rays: "
-              "the ray core's rays/s against Embree's own on the same rays")
-          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical", "clutter", "rays"}))
+              "the ray core's rays/s against Embree's own on the same rays; walkthrough: 50 views through "
+              "box-room-60 and interior-1m, radiosity solved once against the path tracer per view "
+              "(walkthrough-quick: 3 views of box-room-10)")
+          ->check(CLI::IsMember({"quick", "full", "adaptive", "scale", "hierarchical", "clutter", "rays", "walkthrough",
+                                 "walkthrough-quick"}))
           ->capture_default_str();
   command.add_option("--out", options.out_dir, "folder for the results and the cached reference pictures")
       ->capture_default_str();
@@ -244,6 +248,7 @@ void add_bench_options(CLI::App& command, bench_options& options) {
 
 int run_bench_command(const bench_options& options) {
   if (options.suite == "rays") return run_ray_bench(options);  // one process, no cases
+  if (is_walkthrough_suite(options.suite)) return run_walkthrough_bench(options);
   const suite_plan plan = make_suite(options.suite);
   if (options.run_case >= 0) {
     if (options.run_case >= int(plan.cases.size())) {

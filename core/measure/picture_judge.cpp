@@ -10,15 +10,20 @@
 
 namespace bounce {
 
-picture_judge::picture_judge(const scene& s, const camera& view, const bench_truth& truth)
-    : scene_(s), view_(view), downsample_(truth.downsample), still_spp_(truth.still_spp), rays_(s) {
+picture_judge::picture_judge(const scene& s, const camera& view, const bench_truth& truth,
+                             std::shared_ptr<const ray_scene> rays)
+    : scene_(s),
+      view_(view),
+      downsample_(truth.downsample),
+      still_spp_(truth.still_spp),
+      rays_(rays ? std::move(rays) : std::make_shared<const ray_scene>(s)) {
   image reference = truth.picture;
   exclude_pixels(reference, bright_pixels(reference, truth.exclude_above), 1);
   reference_ = downsample(reference, downsample_);
   camera at_size = view;
   at_size.width = reference.width;
   at_size.height = reference.height;
-  material_ = material_per_pixel(s, at_size, rays_);
+  material_ = material_per_pixel(s, at_size, *rays_);
   full_reference_ = std::move(reference);
 }
 
@@ -39,7 +44,7 @@ picture_judge::verdict picture_judge::judge_solution(const patch_mesh& mesh, std
   trace_params params;
   params.spp = still_spp_;
   params.diffuse = source;
-  verdict v = judge(trace_image(scene_, view_, rays_, &field, params));
+  verdict v = judge(trace_image(scene_, view_, *rays_, &field, params));
   v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   v.cpu_seconds = cpu_seconds() - c0;
   return v;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -38,8 +39,11 @@ struct bench_truth {
 // must outlive the judge.
 class picture_judge {
  public:
-  // Judges pictures of `s` as `view` sees them (the reference's camera and size).
-  picture_judge(const scene& s, const camera& view, const bench_truth& truth);
+  // Judges pictures of `s` as `view` sees them (the reference's camera and
+  // size), tracing with `rays` (s's, shared by judges of many views) or
+  // with its own.
+  picture_judge(const scene& s, const camera& view, const bench_truth& truth,
+                std::shared_ptr<const ray_scene> rays = nullptr);
 
   struct verdict {
     double error = not_measured, max_error = not_measured;
@@ -52,13 +56,13 @@ class picture_judge {
   // light by shadow rays and the rest from it (traced_direct: two-pass).
   verdict judge_solution(const patch_mesh& mesh, std::span<const rgb> radiosity, std::span<const rgb> direct,
                          diffuse_source source) const;
-  const ray_scene& rays() const { return rays_; }
+  const ray_scene& rays() const { return *rays_; }
 
  private:
   const scene& scene_;
   camera view_;
   int downsample_ = 4, still_spp_ = 4;
-  ray_scene rays_;
+  std::shared_ptr<const ray_scene> rays_;
   image reference_;       // box-filtered
   image full_reference_;  // at full size, for the means per material
   std::vector<int> material_;

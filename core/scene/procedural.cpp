@@ -568,6 +568,34 @@ std::size_t triangle_count(const scene& s) {
   return n;
 }
 
+std::vector<camera> procedural_walk(const scene& s, int views) {
+  std::vector<camera> walk;
+  const std::string_view name = s.source;
+  std::uint64_t target = 0;
+  const bool box_room = name.starts_with("box-room-");
+  const bool interior = name.starts_with("interior-") && parse_count(name.substr(9), target);
+  if (views < 1 || !(box_room || interior)) return walk;
+  for (int k = 0; k < views; ++k) {
+    camera c = s.view;
+    if (box_room) {
+      // Boxes are at most 1.2 high and 4.5 from the centre; the walls are at 5.
+      const double a = 2.0 * std::numbers::pi * k / views, ahead = a + 1.75;
+      c.eye = {3.5 * std::cos(a), 1.8, 3.5 * std::sin(a)};
+      c.target = {2.0 * std::cos(ahead), 0.4, 2.0 * std::sin(ahead)};
+    } else {
+      // The strip 0.9 from the north walls holds the doors and no furniture.
+      const int rooms_x = plan_interior(std::size_t(target)).rooms_x;
+      const double x_end = rooms_x * (room_w + wall_t) - wall_t - 0.6;
+      const double x = 0.6 + (x_end - 0.6) * k / std::max(1, views - 1);
+      c.eye = {x, 1.6, room_d - 0.9};
+      c.target = c.eye + vec3(3.0, -0.6, -1.5);
+    }
+    c.up = {0.0, 1.0, 0.0};
+    walk.push_back(c);
+  }
+  return walk;
+}
+
 bool make_procedural_scene(std::string_view name, scene& out, std::string& error) {
   const std::string quoted = "procedural scene '" + std::string(name) + "'";
   constexpr std::string_view box_room = "box-room-", open_room = "box-room-open-", interior = "interior-";

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -51,5 +52,14 @@ std::size_t triangle_count(const scene& s);
 // (1,000,000) suffix, e.g. "box-room-60", "interior-100k", "interior-1m".
 // False with `error` naming the name when it is none of these.
 bool make_procedural_scene(std::string_view name, scene& out, std::string& error);
+
+// A walk through a scene make_procedural_scene built (s.source names it):
+// `views` cameras with the scene camera's field of view and size, at even
+// steps along a path that stays clear of everything. A box room: once
+// round a circle of radius 3.5 about the centre, 1.8 high, each camera
+// looking ahead across the boxes. An interior: along the first row of
+// rooms through their doors (0.9 from the rooms' north walls, 1.6 high),
+// looking ahead and down towards the tables. Empty for any other scene.
+std::vector<camera> procedural_walk(const scene& s, int views);
 
 }  // namespace bounce

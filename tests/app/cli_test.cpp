@@ -536,7 +536,40 @@ TEST(Cli, BenchQuickSuiteWritesEveryOutputForEveryMethod) {
   EXPECT_NE(md.find("## Growth with element count"), std::string::npos);
   EXPECT_NE(md.find("Fitted exponents"), std::string::npos);
   // The reference picture is cached and reused by the next run.
-  EXPECT_TRUE(std::filesystem::exists(dir.path("bench/reference/cornell-64px-1024spp.pfm")));
+  EXPECT_TRUE(std::filesystem::exists(dir.path("bench/reference/cornell-64px-256spp.pfm")));
+}
+
+// The walkthrough's smoke run: one solve, every view judged for both
+// methods, the path tracer's sample count a power of two that either
+// reached the radiosity picture's error or is the cap; references cached.
+TEST(Cli, BenchWalkthroughJudgesEveryViewForBothMethods) {
+  scratch_dir dir;
+  run_result r = run("bench --suite walkthrough-quick --out " + dir.path("walk"));
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const nlohmann::json results = nlohmann::json::parse(read_text(dir.path("walk/walkthrough.json")));
+  ASSERT_EQ(results["scenes"].size(), 1u);
+  const nlohmann::json& scene = results["scenes"][0];
+  EXPECT_EQ(scene["scene"], "box-room-10");
+  EXPECT_GT(scene["solve_seconds"].get<double>(), 0.0);
+  EXPECT_GT(scene["links"].get<std::uint64_t>(), 0u);
+  ASSERT_EQ(scene["views"].size(), 3u);
+  double path_seconds = 0.0;
+  for (const auto& v : scene["views"]) {
+    const double radiosity = v["radiosity_error"].get<double>(), path = v["path_error"].get<double>();
+    EXPECT_GT(radiosity, 0.0);
+    EXPECT_LT(radiosity, 0.5) << v.dump();
+    const int spp = v["path_spp"].get<int>();
+    EXPECT_TRUE(spp >= 1 && spp <= 16 && (spp & (spp - 1)) == 0) << spp;
+    EXPECT_EQ(v["path_reached"].get<bool>(), path <= radiosity) << v.dump();
+    if (!v["path_reached"].get<bool>()) {
+      EXPECT_EQ(spp, 16);
+    }
+    path_seconds += v["path_seconds"].get<double>();
+  }
+  EXPECT_NEAR(scene["path_seconds"].get<double>(), path_seconds + scene["path_bvh_seconds"].get<double>(), 1e-9);
+  const std::string md = read_text(dir.path("walk/walkthrough.md"));
+  EXPECT_NE(md.find("| radiosity: one solve, every view drawn |"), std::string::npos) << md;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("walk/reference/walk-box-room-10-2of3-64px-64spp.pfm")));
 }
 
 TEST(Cli, BenchRejectsAnUnknownSuite) {

@@ -10,6 +10,7 @@
 #include "scene/procedural.h"
 #include "scene/scene_validate.h"
 #include "scene/tessellate.h"
+#include "trace/ray_scene.h"
 
 namespace bounce {
 namespace {
@@ -263,6 +264,37 @@ TEST(Procedural, DISABLED_Timing) {
                   seconds(t1), mesh.element_count(), mesh.nonmanifold_faces, mesh.uncut_overlaps);
     }
   }
+}
+
+// The walkthroughs' paths stay clear of everything: nothing lies within
+// 0.2 of any eye (rays in six directions), nothing between one eye and the
+// next (the interior's path goes through its doors), and every camera
+// looks at something.
+TEST(Procedural, WalksStayClearOfEverything) {
+  for (const char* name : {"box-room-10", "interior-100k"}) {
+    scene s;
+    std::string error;
+    ASSERT_TRUE(make_procedural_scene(name, s, error)) << error;
+    const std::vector<camera> walk = procedural_walk(s, 20);
+    ASSERT_EQ(walk.size(), 20u) << name;
+    const ray_scene rays(s);
+    for (std::size_t i = 0; i < walk.size(); ++i) {
+      const camera& c = walk[i];
+      EXPECT_EQ(c.width, s.view.width);
+      EXPECT_EQ(c.fov_y_degrees, s.view.fov_y_degrees);
+      for (const vec3& d :
+           {vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1)}) {
+        EXPECT_FALSE(rays.intersect(c.eye, d, 0.0, 0.2)) << name << " view " << i;
+      }
+      if (i > 0) {
+        EXPECT_FALSE(rays.occluded(walk[i - 1].eye, c.eye)) << name << " views " << i - 1 << ", " << i;
+      }
+      EXPECT_TRUE(rays.intersect(c.eye, glm::normalize(c.target - c.eye))) << name << " view " << i;
+    }
+  }
+  scene other;
+  other.view.width = 16;
+  EXPECT_TRUE(procedural_walk(other, 5).empty());  // not a procedural scene
 }
 
 }  // namespace
