@@ -106,6 +106,7 @@ bool split_marked_elements(hierarchical_solver& solver) {
   solver.light.mirrored = carried(light.mirrored, from);
   solver.residual.assign(refined->element_count(), rgb(0.0));
   solver.gathered = {};
+  solver.gathered_at.clear();
   return true;
 }
 

@@ -135,6 +135,19 @@ struct gather_inputs {
   }
 };
 
+// With a view, the vertices of the elements it sees (straight or through
+// mirrors and glass); the rest are not in the picture and keep the element
+// solution. Without one (empty), every vertex.
+std::vector<bool> vertices_to_gather(const hierarchical_solver& solver) {
+  if (solver.view.seen.empty()) return {};
+  const patch_mesh& mesh = solver.mesh();
+  std::vector<bool> wanted(mesh.vertex_count(), false);
+  for (std::size_t e = 0; e < mesh.element_count(); ++e)
+    if (solver.view.seen[std::size_t(solver.meshes.input_element[e])] > 0.0)
+      for (int k = 0; k < 3; ++k) wanted[std::size_t(mesh.elements[e][k])] = true;
+  return wanted;
+}
+
 }  // namespace
 
 std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
@@ -155,8 +168,10 @@ std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
       std::uint64_t& m = most[std::size_t(mesh.elements[e][k])];
       m = std::max(m, chain[std::size_t(tree.leaf_of_element[e])]);
     }
+  const std::vector<bool> wanted = vertices_to_gather(solver);
   std::uint64_t total = 0;
-  for (const std::uint64_t m : most) total += m;
+  for (std::size_t v = 0; v < most.size(); ++v)
+    if (wanted.empty() || wanted[v]) total += most[v];
   return total;
 }
 
@@ -194,6 +209,8 @@ bool final_gather(hierarchical_solver& solver) {
   const gather_inputs inputs{solver, node_b, node_e, sent_b, sent_e, 1e-9 * mesh.scene_diagonal};
   const bool lamps = has_lights_beyond_surfaces(s);
   const std::size_t n = mesh.vertex_count();
+  solver.gathered_at = vertices_to_gather(solver);
+  const std::vector<bool>& wanted = solver.gathered_at;
   light_parts& out = solver.gathered;
   out.total.assign(n, rgb(0.0));
   out.direct.assign(n, rgb(0.0));
@@ -203,6 +220,7 @@ bool final_gather(hierarchical_solver& solver) {
     std::uint64_t count = 0, lamp_rays = 0;
     std::vector<std::pair<int, double>> nodes;
     for (std::size_t v = b; v < end; ++v) {
+      if (!wanted.empty() && !wanted[v]) continue;
       nodes_above(solver, around, v, nodes);
       const vec3& p = mesh.receive_points[v];
       const vec3& normal = mesh.normals[v];

@@ -28,6 +28,10 @@ vertex_light publish_vertex_light(hierarchical_solver& h) {
   const element_sources& src = h.sources;
   vertex_light out;
   const bool gathered = solution_final(h) && h.residual_fraction <= h.params.refine_below && final_gather(h);
+  // Where the gather left a vertex out (with a view, one the view does not
+  // see), the element solution stands, averaged to it by area.
+  const std::vector<bool>& at = h.gathered_at;
+  const bool everywhere = at.empty();
   if (gathered) {
     // Gathered at the vertices: the point lights included; their light by
     // way of mirrors and glass stays per element.
@@ -37,6 +41,15 @@ vertex_light publish_vertex_light(hierarchical_solver& h) {
         src.specular_lamp.empty() ? std::vector<rgb>() : element_to_vertex(mesh, src.specular_lamp);
     for (std::size_t v = 0; v < out.radiosity.size(); ++v)
       out.radiosity[v] = mesh.vertex_emission[v] + h.gathered.total[v] + (specular.empty() ? rgb(0.0) : specular[v]);
+    if (!everywhere) {
+      const std::vector<rgb> total = element_to_vertex(mesh, h.light.total);
+      const std::vector<rgb> direct = element_to_vertex(mesh, h.light.direct);
+      for (std::size_t v = 0; v < out.radiosity.size(); ++v)
+        if (!at[v]) {
+          out.radiosity[v] = total[v];
+          out.direct[v] = direct[v];
+        }
+    }
   } else {
     out.radiosity = element_to_vertex(mesh, h.light.total);
     out.direct = element_to_vertex(mesh, h.light.direct);
@@ -49,11 +62,17 @@ vertex_light publish_vertex_light(hierarchical_solver& h) {
     if (!src.specular_lamp_input.empty())
       for (std::size_t e = 0; e < caustic.size(); ++e)
         caustic[e] = src.specular_lamp_input[std::size_t(h.meshes.input_element[e])];
+    std::vector<rgb> mirrored_per_vertex;
     if (!gathered)
       for (std::size_t e = 0; e < caustic.size() && e < h.light.mirrored.size(); ++e) caustic[e] += h.light.mirrored[e];
+    else if (!everywhere && h.light.mirrored.size() == caustic.size())
+      mirrored_per_vertex = element_to_vertex(mesh, h.light.mirrored);
     out.caustic = element_to_vertex(mesh, caustic);
     if (gathered)
-      for (std::size_t v = 0; v < out.caustic.size(); ++v) out.caustic[v] += h.gathered.mirrored[v];
+      for (std::size_t v = 0; v < out.caustic.size(); ++v)
+        out.caustic[v] += everywhere || at[v]           ? h.gathered.mirrored[v]
+                          : mirrored_per_vertex.empty() ? rgb(0.0)
+                                                        : mirrored_per_vertex[v];
   }
   return out;
 }

@@ -135,6 +135,7 @@ void restart_hierarchical(hierarchical_solver& solver) {
   solver.residual.assign(n, rgb(0.0));
   solver.residual_fraction = 1.0;
   solver.gathered = {};
+  solver.gathered_at.clear();
   const std::uint64_t rays = solver.progress.rays;
   const bool closed = solver.progress.closed;
   solver.progress = hierarchy_progress{};

@@ -123,6 +123,9 @@ struct hierarchical_solver {
   // at the vertex over the links above its elements (final_gather.h;
   // empty until made). Indexed by vertex, unlike `light`.
   light_parts gathered;
+  // The vertices it gathered at: with a view, those of the elements the
+  // view sees; empty: every vertex.
+  std::vector<bool> gathered_at;
   view_weights view;
   // Per element, the bisections the last link refinement asked for
   // (empty: none; element_refinement.h).

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "radiosity/hierarchical/fixtures.h"
+#include "radiosity/hierarchical/publication.h"
 #include "radiosity/hierarchical/solver.h"
 #include "radiosity/hierarchical/view_importance.h"
 #include "radiosity/solve.h"
@@ -103,6 +104,36 @@ TEST(ViewImportance, ANewViewKeepsWhatWasRefinedAndRefinesWhatItSees) {
   EXPECT_GE(after.left, before.left) << "the first view's links stay";
   EXPECT_GT(after.right, 2 * before.right) << "the new view's room is refined";
   EXPECT_GE(solved_mesh(*solver).element_count(), elements_before);
+}
+
+// With a view, the final gather is made at the vertices the view sees;
+// the others keep the element solution, averaged to them by area.
+TEST(ViewImportance, TheFinalGatherIsMadeWhereTheViewLooks) {
+  const scene s = two_rooms();
+  solve_setup plain_setup, led_setup;
+  const auto plain = solved(s, plain_setup, false);
+  const auto led = solved(s, led_setup, true);
+  const hierarchical_solver& p = *hierarchical_of(*plain);
+  const hierarchical_solver& h = *hierarchical_of(*led);
+  ASSERT_TRUE(p.gathered_at.empty()) << "without a view, every vertex";
+  ASSERT_FALSE(p.gathered.total.empty());
+  const patch_mesh& mesh = h.mesh();
+  ASSERT_EQ(h.gathered_at.size(), mesh.vertex_count());
+  std::size_t seen = 0;
+  const auto radiosity = make_snapshot(*led)->radiosity;
+  const std::vector<rgb> averaged = element_to_vertex(mesh, h.light.total);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (mesh.positions[v].x > 0.0) {
+      EXPECT_FALSE(h.gathered_at[v]) << "vertex " << v << " of the unseen room";
+    }
+    if (h.gathered_at[v]) {
+      ++seen;
+    } else {
+      EXPECT_EQ(radiosity[v], averaged[v]) << "vertex " << v;
+    }
+  }
+  EXPECT_GT(seen, mesh.vertex_count() / 4);
+  EXPECT_LT(h.progress.gather_evaluations, p.progress.gather_evaluations);
 }
 
 // The camera's rays run on TBB's threads or on one: the weights, and so
