@@ -40,7 +40,8 @@ struct solver_settings {
   double patch_edge = -1.0;  // shooting patches (substructuring); 0: elements shoot; < 0: the default
   // Elements are not split below this edge: the hierarchical solver's
   // element refinement and the progressive solver's adaptive meshing both
-  // read it. 0: an eighth of the element size.
+  // read it. 0: an eighth of the element size (hierarchical, with a view:
+  // finer where the view sees elements large).
   double min_edge = 0.0;
   form_factor_params form_factors;
   adaptive_params adaptive;  // progressive: adaptive meshing (its min_edge comes from min_edge above)

@@ -19,6 +19,20 @@ std::vector<value> carried(const std::vector<value>& old, const std::vector<int>
   return out;
 }
 
+// With a view, an element it sees large may be split below the default
+// minimum edge (an eighth of the starting size, which follows the scene's
+// size), down to an edge that spans seen_edge_rays of the camera's rays,
+// but not below an eighth of that minimum. A minimum given stays.
+constexpr double seen_edge_rays = 4.0;
+
+double element_min_edge(const hierarchical_solver& solver, std::size_t element) {
+  const double min_edge = solver.meshes.min_edge;
+  if (solver.view.seen.empty() || !solver.meshes.min_edge_follows_view) return min_edge;
+  const double density = solver.view.seen[std::size_t(solver.meshes.input_element[element])];  // rays per unit area
+  if (!(density > 0.0)) return min_edge;
+  return std::clamp(seen_edge_rays / std::sqrt(density), min_edge / 8.0, min_edge);
+}
+
 }  // namespace
 
 int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>& node_b, double tolerance, int i, int j,
@@ -51,7 +65,9 @@ int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>&
     error = (hi - lo) * transfer;
   }
   const double ratio = error / tolerance;
-  if (!(ratio > 1.0) || !(element_longest_edge(mesh, std::size_t(r.element)) > solver.meshes.min_edge)) return 0;
+  if (!(ratio > 1.0) ||
+      !(element_longest_edge(mesh, std::size_t(r.element)) > element_min_edge(solver, std::size_t(r.element))))
+    return 0;
   return std::clamp(int(std::ceil(std::log2(ratio))), 1, solver.params.max_bisections);
 }
 
@@ -72,7 +88,11 @@ bool split_marked_elements(hierarchical_solver& solver) {
       times.push_back(solver.split_marks[e]);
     }
   std::string error;
-  bool split = refine_patch_mesh(*refined, marked, solver.meshes.min_edge, from, error, times);
+  // Each mark says how often (at most to its element's own minimum edge);
+  // the mesher's floor is the lowest any element may reach.
+  const bool follows = !solver.view.seen.empty() && solver.meshes.min_edge_follows_view;
+  const double floor = follows ? solver.meshes.min_edge / 8.0 : solver.meshes.min_edge;
+  bool split = refine_patch_mesh(*refined, marked, floor, from, error, times);
   if (!split) solver.progress.warning = "element refinement stopped: " + error;
   split = split && refined->element_count() > n;
   solver.split_marks.clear();

@@ -22,7 +22,8 @@ namespace bounce {
 // centre, times the source's radiosity and the element's area), or, on a
 // shadow edge (partly visible), the whole transfer; each bisection halves
 // it. Through a mirror chain (not null), the same with the source's image
-// and kr. Off unless params.split_elements; never below min_edge.
+// and kr. Off unless params.split_elements; never below min_edge
+// (with a view and no min_edge given, a seen element may go below it).
 int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>& node_b, double tolerance, int i, int j,
                       double factor, float visibility, const mirror_chain* chain);
 

@@ -97,6 +97,7 @@ std::unique_ptr<hierarchical_solver> make_hierarchical_solver(const scene& s, co
   solver->context = context;
   solver->context.vertex_areas.clear();  // the solver works per element
   solver->meshes.min_edge = params.min_edge > 0.0 ? params.min_edge : mesh.max_edge / 8.0;
+  solver->meshes.min_edge_follows_view = !(params.min_edge > 0.0);
   if (params.mirror_links && context.mirrors && context.params.specular_transfer)
     solver->hierarchy.chains = mirror_chains(*context.mirrors, context.params.mirror_depth);
   solver->sources.has_path_targets = path_targets(*solver) != nullptr;

@@ -33,6 +33,9 @@ struct solved_meshes {
   std::shared_ptr<const patch_mesh> refined;  // the input mesh with elements split, once any are
   std::vector<int> input_element;             // per element: the input mesh's element it lies in
   double min_edge = 0.0;                      // resolved: elements are not split below it
+  // Elements a view sees large may go below min_edge (element_refinement.h),
+  // unless it was given (params.min_edge).
+  bool min_edge_follows_view = true;
 };
 
 // The tree and the links over it: with rho and the normaliser, the

@@ -133,7 +133,38 @@ TEST(ViewImportance, TheFinalGatherIsMadeWhereTheViewLooks) {
     }
   }
   EXPECT_GT(seen, mesh.vertex_count() / 4);
-  EXPECT_LT(h.progress.gather_evaluations, p.progress.gather_evaluations);
+  EXPECT_LT(seen, 3 * mesh.vertex_count() / 4);
+}
+
+// The default minimum edge follows the scene's size; with a view, what the
+// view sees may be split finer (the Cornell box's short block's shadow,
+// seen close up), while a minimum edge given is kept.
+TEST(ViewImportance, SeenElementsMaySplitBelowTheDefaultMinimumEdge) {
+  const scene s = cornell();
+  camera close_up = s.view;
+  close_up.eye = vec3(400.0, 250.0, 50.0);
+  close_up.target = vec3(380.0, 0.0, 200.0);
+  close_up.fov_y_degrees = 30.0;
+  // Elements under the default minimum edge, in the mesher's mesh (slivers
+  // of the cuts) and in the solved one.
+  std::size_t meshed[2] = {0, 0}, solved[2] = {0, 0};
+  for (const bool given : {false, true}) {
+    solver_settings settings;
+    settings.view = close_up;
+    if (given) settings.min_edge = 60.0;
+    solve_setup setup;
+    std::string error;
+    ASSERT_TRUE(start_solve(s, settings, setup, error)) << error;
+    solve(*setup.solver, 1e-3);
+    const hierarchical_solver& h = *hierarchical_of(*setup.solver);
+    const double default_minimum = h.meshes.input->max_edge / 8.0;
+    for (std::size_t e = 0; e < h.meshes.input->element_count(); ++e)
+      meshed[given] += element_longest_edge(*h.meshes.input, e) < 0.99 * default_minimum;
+    for (std::size_t e = 0; e < h.mesh().element_count(); ++e)
+      solved[given] += element_longest_edge(h.mesh(), e) < 0.99 * default_minimum;
+  }
+  EXPECT_GT(solved[0], meshed[0] + 100) << "seen elements split below the default minimum";
+  EXPECT_EQ(solved[1], meshed[1]) << "a minimum edge given holds";
 }
 
 // The camera's rays run on TBB's threads or on one: the weights, and so
