@@ -21,16 +21,18 @@ std::vector<value> carried(const std::vector<value>& old, const std::vector<int>
 
 // With a view, an element it sees large may be split below the default
 // minimum edge (an eighth of the starting size, which follows the scene's
-// size), down to an edge that spans seen_edge_rays of the camera's rays,
-// but not below an eighth of that minimum. A minimum given stays.
-constexpr double seen_edge_rays = 4.0;
+// size), down to an edge that spans 2 pixels of the camera's picture and
+// 4 of its importance rays (their resolution), but not below an eighth of
+// that minimum. A minimum given stays.
+constexpr double seen_edge_pixels = 2.0, seen_edge_rays = 4.0;
 
 double element_min_edge(const hierarchical_solver& solver, std::size_t element) {
   const double min_edge = solver.meshes.min_edge;
   if (solver.view.seen.empty() || !solver.meshes.min_edge_follows_view) return min_edge;
   const double density = solver.view.seen[std::size_t(solver.meshes.input_element[element])];  // rays per unit area
   if (!(density > 0.0)) return min_edge;
-  return std::clamp(seen_edge_rays / std::sqrt(density), min_edge / 8.0, min_edge);
+  const double rays = std::max(seen_edge_rays, seen_edge_pixels * solver.view.rays_per_pixel);
+  return std::clamp(rays / std::sqrt(density), min_edge / 8.0, min_edge);
 }
 
 }  // namespace

@@ -88,9 +88,10 @@ struct transport_buffers {
 
 // The view that leads refinement (view_importance.h).
 struct view_weights {
-  std::vector<double> seen;  // per input element: the camera's rays per unit area (empty: no view)
-  std::vector<double> node;  // per tree node: the receiver's weight (empty: every receiver weighs 1)
-  bool retarget = false;     // a new view waits for the links to be refined for it
+  std::vector<double> seen;     // per input element: the camera's rays per unit area (empty: no view)
+  double rays_per_pixel = 0.0;  // along a side of the camera's picture: its size against the rays
+  std::vector<double> node;     // per tree node: the receiver's weight (empty: every receiver weighs 1)
+  bool retarget = false;        // a new view waits for the links to be refined for it
 };
 
 struct hierarchy_progress {

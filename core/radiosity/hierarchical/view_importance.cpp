@@ -72,10 +72,15 @@ std::vector<double> seen_density(const patch_mesh& mesh, const scene& s, const f
 }
 
 void set_view(hierarchical_solver& solver, const std::optional<camera>& view) {
+  constexpr int rays_across = 256;
   solver.view.seen.clear();
-  if (view)
+  solver.view.rays_per_pixel = 0.0;
+  if (view) {
     solver.view.seen =
-        seen_density(*solver.meshes.input, *solver.source, solver.context, *view, 256, solver.params.parallel);
+        seen_density(*solver.meshes.input, *solver.source, solver.context, *view, rays_across, solver.params.parallel);
+    solver.view.rays_per_pixel =
+        rays_across / std::sqrt(double(std::max(view->width, 1)) * double(std::max(view->height, 1)));
+  }
   solver.view.node.clear();
   solver.view.retarget = true;
 }
