@@ -18,6 +18,22 @@ fs::path reference_path(const std::string& out_dir, const std::string& scene, in
          (scene + "-" + std::to_string(size) + "px-" + std::to_string(spp) + "spp.pfm");
 }
 
+bool cache_reference(const fs::path& path, const image& reference) {
+  const fs::path partial = path.string() + ".partial";
+  std::string error;
+  if (!write_pfm(partial.string(), reference, error)) {
+    std::cerr << "error: " << error << "\n";
+    return false;
+  }
+  std::error_code ec;
+  fs::rename(partial, path, ec);
+  if (ec) {
+    std::cerr << "error: " << path.string() << ": " << ec.message() << "\n";
+    return false;
+  }
+  return true;
+}
+
 bool prepare_references(const suite_plan& plan, const std::string& out_dir, json& notes) {
   std::vector<std::string> done;
   for (const bench_case& c : plan.cases) {
@@ -42,18 +58,7 @@ bool prepare_references(const suite_plan& plan, const std::string& out_dir, json
       const image reference = path_reference(s, plan.reference_spp, 1);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::cout << " " << seconds << " s\n";
-      // Written aside and renamed: an interrupted run leaves no truncated cache.
-      const fs::path partial = path.string() + ".partial";
-      std::error_code ec;
-      if (!write_pfm(partial.string(), reference, error)) {
-        std::cerr << "error: " << error << "\n";
-        return false;
-      }
-      fs::rename(partial, path, ec);
-      if (ec) {
-        std::cerr << "error: " << path.string() << ": " << ec.message() << "\n";
-        return false;
-      }
+      if (!cache_reference(path, reference)) return false;
       note["cached"] = false;
       note["seconds"] = seconds;
     }

@@ -11,10 +11,12 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_references.h"
 #include "common/exit_code.h"
 #include "measure/picture_judge.h"
 #include "measure/walkthrough.h"
 #include "scene/procedural.h"
+#include "trace/ray_scene.h"
 
 namespace bounce {
 namespace {
@@ -49,10 +51,9 @@ walk_plan make_walk_plan(const std::string& suite) {
   return plan;
 }
 
-// The reference of view `index` of the walk, from the cache or traced now
-// (written aside and renamed: an interrupted run leaves no truncated file).
-bool walk_reference(const std::string& out_dir, const scene& s, const camera& view, int index, const walk_plan& plan,
-                    image& out, json& note) {
+// The reference of view `index` of the walk, from the cache or traced now.
+bool walk_reference(const std::string& out_dir, const scene& s, const ray_scene& rays, const camera& view, int index,
+                    const walk_plan& plan, image& out, json& note) {
   const fs::path path = fs::path(out_dir) / "reference" /
                         ("walk-" + s.source + "-" + std::to_string(index) + "of" + std::to_string(plan.views) + "-" +
                          std::to_string(plan.size) + "px-" + std::to_string(plan.reference_spp) + "spp.pfm");
@@ -65,25 +66,12 @@ bool walk_reference(const std::string& out_dir, const scene& s, const camera& vi
     note["cached"] = true;
     return true;
   }
-  scene at_view = s;  // path_reference traces s.view
-  at_view.view = view;
   const auto start = std::chrono::steady_clock::now();
-  out = path_reference(at_view, plan.reference_spp, 1);
+  out = path_reference(s, view, rays, plan.reference_spp, 1);
   note["cached"] = false;
   note["seconds"] =
       note.value("seconds", 0.0) + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const fs::path partial = path.string() + ".partial";
-  std::error_code ec;
-  if (!write_pfm(partial.string(), out, error)) {
-    std::cerr << "error: " << error << "\n";
-    return false;
-  }
-  fs::rename(partial, path, ec);
-  if (ec) {
-    std::cerr << "error: " << path.string() << ": " << ec.message() << "\n";
-    return false;
-  }
-  return true;
+  return cache_reference(path, out);
 }
 
 std::string percent(double v) {
@@ -147,9 +135,12 @@ int run_walkthrough_bench(const bench_options& options) {
     json reference_note = json::object();
     std::printf("bench: walkthrough %s: references (%d views, %d spp) ...", ws.name, plan.views, plan.reference_spp);
     std::fflush(stdout);
-    for (std::size_t i = 0; i < views.size(); ++i)
-      if (!walk_reference(options.out_dir, s, views[i], int(i), plan, references[i], reference_note))
-        return exit_input_error;
+    {
+      const ray_scene rays(s);  // one BVH for every view's reference
+      for (std::size_t i = 0; i < views.size(); ++i)
+        if (!walk_reference(options.out_dir, s, rays, views[i], int(i), plan, references[i], reference_note))
+          return exit_input_error;
+    }
     std::printf(" %.1f s\n", reference_note.value("seconds", 0.0));
     std::printf("bench: walkthrough %s: solving once, then %zu views ...", ws.name, views.size());
     std::fflush(stdout);

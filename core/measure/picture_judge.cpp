@@ -60,12 +60,15 @@ double emitter_threshold(const scene& s) {
 }
 
 image path_reference(const scene& s, int spp, std::uint64_t seed) {
-  ray_scene rays(s);
+  return path_reference(s, s.view, ray_scene(s), spp, seed);
+}
+
+image path_reference(const scene& s, const camera& view, const ray_scene& rays, int spp, std::uint64_t seed) {
   trace_params params;
   params.method = integrator::path;
   params.spp = spp;
   params.seed = seed;
-  return trace_image(s, s.view, rays, nullptr, params);
+  return trace_image(s, view, rays, nullptr, params);
 }
 
 }  // namespace bounce

@@ -74,5 +74,7 @@ double emitter_threshold(const scene& s);
 
 // The path-traced reference picture of s.view: `spp` samples per pixel.
 image path_reference(const scene& s, int spp, std::uint64_t seed);
+// The same of `view`, with s's ray scene already built (many views of one scene).
+image path_reference(const scene& s, const camera& view, const ray_scene& rays, int spp, std::uint64_t seed);
 
 }  // namespace bounce
