@@ -148,9 +148,8 @@ std::vector<bool> vertices_to_gather(const hierarchical_solver& solver) {
   return wanted;
 }
 
-}  // namespace
-
-std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
+// final_gather_cost over the vertices `wanted` (empty: all of them).
+std::uint64_t gather_cost(const hierarchical_solver& solver, const std::vector<bool>& wanted) {
   // Per vertex, the links above the element around it with the most:
   // a vertex gathers at least those, and its other elements' chains share
   // all but their lowest nodes with it. Counted without building the
@@ -168,15 +167,21 @@ std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
       std::uint64_t& m = most[std::size_t(mesh.elements[e][k])];
       m = std::max(m, chain[std::size_t(tree.leaf_of_element[e])]);
     }
-  const std::vector<bool> wanted = vertices_to_gather(solver);
   std::uint64_t total = 0;
   for (std::size_t v = 0; v < most.size(); ++v)
     if (wanted.empty() || wanted[v]) total += most[v];
   return total;
 }
 
+}  // namespace
+
+std::uint64_t final_gather_cost(const hierarchical_solver& solver) {
+  return gather_cost(solver, vertices_to_gather(solver));
+}
+
 bool final_gather(hierarchical_solver& solver) {
-  if (final_gather_cost(solver) > solver.params.gather_budget) return false;
+  std::vector<bool> wanted = vertices_to_gather(solver);
+  if (gather_cost(solver, wanted) > solver.params.gather_budget) return false;
   const link_hierarchy& h = solver.hierarchy;
   const cluster_tree& tree = h.tree;
   const patch_mesh& mesh = solver.mesh();
@@ -209,8 +214,8 @@ bool final_gather(hierarchical_solver& solver) {
   const gather_inputs inputs{solver, node_b, node_e, sent_b, sent_e, 1e-9 * mesh.scene_diagonal};
   const bool lamps = has_lights_beyond_surfaces(s);
   const std::size_t n = mesh.vertex_count();
-  solver.gathered_at = vertices_to_gather(solver);
-  const std::vector<bool>& wanted = solver.gathered_at;
+  solver.gathered_at = std::move(wanted);
+  const std::vector<bool>& at = solver.gathered_at;
   light_parts& out = solver.gathered;
   out.total.assign(n, rgb(0.0));
   out.direct.assign(n, rgb(0.0));
@@ -220,7 +225,7 @@ bool final_gather(hierarchical_solver& solver) {
     std::uint64_t count = 0, lamp_rays = 0;
     std::vector<std::pair<int, double>> nodes;
     for (std::size_t v = b; v < end; ++v) {
-      if (!wanted.empty() && !wanted[v]) continue;
+      if (!at.empty() && !at[v]) continue;
       nodes_above(solver, around, v, nodes);
       const vec3& p = mesh.receive_points[v];
       const vec3& normal = mesh.normals[v];
