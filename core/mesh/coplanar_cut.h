@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "mesh/polygon_triangulation.h"
 #include "scene/scene.h"
 #include "scene/tessellate.h"
 
@@ -85,19 +86,5 @@ struct contact_cut_stats {
 // are left alone (the mesher passes a tenth of its element size).
 contact_cut_stats cut_buried_contacts(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
                                       double scene_diagonal, double smallest_part);
-
-// Triangulates a simple polygon with holes, given as integer points (exact
-// orientation tests): `outer` counter-clockwise, each hole clockwise, none
-// touching another. Returns corner triples, counter-clockwise, indexing the
-// concatenation of outer and the holes in order: ear clipping, then
-// Lawson's flips to a constrained Delaunay triangulation (the polygon's and
-// the holes' edges kept), which has no slivers the points do not force.
-// Exposed for tests.
-struct int_point {
-  long long x = 0, y = 0;
-  bool operator==(const int_point&) const = default;
-};
-std::vector<std::array<int, 3>> triangulate_with_holes(const std::vector<int_point>& outer,
-                                                       const std::vector<std::vector<int_point>>& holes);
 
 }  // namespace bounce
