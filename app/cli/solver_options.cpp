@@ -79,6 +79,9 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
                   "hierarchical and --adaptive: elements whose longest edge is at most this are not split "
                   "(default: max edge / 8)")
       ->check(number_in(0.0, INFINITY, true));
+  command.add_flag("--shadow-outlines", o.shadow_outlines,
+                   "cut the umbra and penumbra outlines of the strong area lights into the mesh (sharp shadows of "
+                   "small lights; see docs/radiosity.md)");
 }
 
 void add_view_independent_option(CLI::App& command, bool& view_independent) {
@@ -97,7 +100,7 @@ std::span<const char* const> solver_option_names() {
   static constexpr const char* names[] = {"--solver",     "--link-tolerance", "--mirror-depth", "--method",
                                           "--max-edge",   "--until",          "--max-steps",    "--time",
                                           "--patch-edge", "--full-rays",      "--rays",         "--hemicube",
-                                          "--adaptive",   "--tolerance",      "--min-edge"};
+                                          "--adaptive",   "--tolerance",      "--min-edge",     "--shadow-outlines"};
   return names;
 }
 

@@ -9,7 +9,7 @@ namespace {
 // Whether two sets of mesher parameters build the same mesh.
 bool same_meshing(const mesher_params& a, const mesher_params& b) {
   return a.max_edge == b.max_edge && a.crease_angle_degrees == b.crease_angle_degrees && a.patch_edge == b.patch_edge &&
-         a.a_priori_min_edge == b.a_priori_min_edge;
+         a.a_priori_min_edge == b.a_priori_min_edge && a.shadow_outlines == b.shadow_outlines;
 }
 
 }  // namespace

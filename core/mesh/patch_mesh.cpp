@@ -17,6 +17,7 @@
 #include "mesh/a_priori_refinement.h"
 #include "mesh/coplanar_cut.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/shadow_outlines.h"
 #include "scene/framing.h"
 #include "scene/scene_info.h"
 #include "scene/tessellate.h"
@@ -269,6 +270,10 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   }
   const coplanar_cut_stats cuts = cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
   const contact_cut_stats contacts = cut_buried_contacts(tessellated, flat, glm::length(b.max - b.min), 0.1 * max_edge);
+  const shadow_outline_stats shadows =
+      params.shadow_outlines
+          ? cut_shadow_outlines(tessellated, flat, s.materials, s.lights, glm::length(b.max - b.min), max_edge)
+          : shadow_outline_stats{};
   working_mesh w;
   std::size_t nonmanifold = 0;
   // OpenMesh prints "complex edge" for every face it refuses; add_surface
@@ -331,6 +336,9 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   pm.contact_footprints = contacts.footprints;
   pm.contact_area_removed = contacts.area_removed;
   pm.contact_outline = contacts.outline;
+  pm.shadow_lights = shadows.lights;
+  pm.shadow_outlines = shadows.shadows;
+  pm.shadow_triangles_split = shadows.triangles_split;
   for (double min_edge : {params.a_priori_min_edge, params.solver_min_edge})
     if (min_edge > 0.0 && min_edge < max_edge / 256.0) {
       error = "min edge " + std::to_string(min_edge) + " is below max edge / 256 (" + std::to_string(max_edge / 256.0) +
@@ -497,6 +505,9 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   out.contact_footprints = mesh.contact_footprints;
   out.contact_area_removed = mesh.contact_area_removed;
   out.contact_outline = mesh.contact_outline;
+  out.shadow_lights = mesh.shadow_lights;
+  out.shadow_outlines = mesh.shadow_outlines;
+  out.shadow_triangles_split = mesh.shadow_triangles_split;
   out.positions = std::move(mesh.positions);
   out.normals = std::move(mesh.normals);
   out.receive_points = std::move(mesh.receive_points);

@@ -56,6 +56,11 @@ struct patch_mesh {
   std::size_t contact_footprints = 0;
   double contact_area_removed = 0.0;
   std::vector<std::array<vec3, 2>> contact_outline;
+  // Shadow outlines cut in (shadow_outlines.h): of how many lights, how
+  // many shadows, how many triangles split along them.
+  std::size_t shadow_lights = 0;
+  std::size_t shadow_outlines = 0;
+  std::size_t shadow_triangles_split = 0;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t element_count() const { return elements.size(); }
@@ -75,6 +80,9 @@ struct mesher_params {
   // > 0: the smallest edge the solver will split elements down to later
   // (the hierarchical solver); checked here like a_priori_min_edge
   double solver_min_edge = 0.0;
+  // the strong lights' shadow outlines are cut into the receivers
+  // (shadow_outlines.h)
+  bool shadow_outlines = false;
 };
 
 // Largest mesh make_patch_mesh builds; past it, a clear error.

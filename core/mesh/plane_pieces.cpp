@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <tuple>
 #include <unordered_map>
 
@@ -153,7 +154,7 @@ bool triangulate_region(const ClipperLib::PolyTree& region, std::vector<std::arr
 // corners in the plane's frame).
 void replace_with(triangle_mesh& m, const piece& p, const std::vector<std::array<int_point, 3>>& added,
                   const plane_frame& frame, const std::map<std::pair<long long, long long>, vec2>& cover_corners,
-                  std::vector<bool>& removed) {
+                  std::vector<bool>& removed, const std::vector<int>* origins) {
   // The piece's own corners keep their exact vertices, so that its boundary
   // still meets its other faces; points where the cover's outline crosses
   // are interpolated from the piece's triangle they lie deepest inside.
@@ -164,7 +165,7 @@ void replace_with(triangle_mesh& m, const piece& p, const std::vector<std::array
       corners.try_emplace({q.X, q.Y}, m.triangles[t][k]);
     }
   std::map<std::pair<long long, long long>, int> made;
-  auto vertex_at = [&](const int_point& q) {
+  auto vertex_at = [&](const int_point& q, std::span<const int> candidates) {
     const auto [it, fresh] = made.try_emplace({q.x, q.y}, int(m.positions.size()));
     if (!fresh) return it->second;
     if (auto c = corners.find({q.x, q.y}); c != corners.end()) return it->second = c->second;
@@ -172,10 +173,10 @@ void replace_with(triangle_mesh& m, const piece& p, const std::vector<std::array
     // not on the integer grid (which is 2^-29 of the scene's extent).
     const auto exact = cover_corners.find({q.x, q.y});
     const vec2 x = exact != cover_corners.end() ? exact->second : frame.plane_point({q.x, q.y});
-    int best = p.triangles.front();
+    int best = candidates.front();
     double best_depth = -INFINITY;
     vec3 best_weights(1.0, 0.0, 0.0);
-    for (int t : p.triangles) {
+    for (int t : candidates) {
       vec2 c[3];
       for (int k = 0; k < 3; ++k) c[k] = frame.exact(m.positions[m.triangles[t][k]]);
       const double area = (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
@@ -201,8 +202,11 @@ void replace_with(triangle_mesh& m, const piece& p, const std::vector<std::array
     return it->second;
   };
   for (int t : p.triangles) removed[t] = true;
-  for (const auto& t : added) {
-    const glm::ivec3 tri(vertex_at(t[0]), vertex_at(t[1]), vertex_at(t[2]));
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    const auto& t = added[i];
+    const std::span<const int> candidates =
+        origins ? std::span<const int>(&(*origins)[i], 1) : std::span<const int>(p.triangles);
+    const glm::ivec3 tri(vertex_at(t[0], candidates), vertex_at(t[1], candidates), vertex_at(t[2], candidates));
     m.triangles.push_back(tri);
     m.materials.push_back(p.material);
     removed.push_back(false);

@@ -91,9 +91,11 @@ bool triangulate_region(const ClipperLib::PolyTree& region, std::vector<std::arr
 // The piece's own corners keep their vertices; new points interpolate
 // position, normal and uv from the piece's triangle they lie deepest in,
 // except those in `exact_points`, which are placed where they are exactly.
+// With `origins` (one per added triangle: the piece's triangle it lies in)
+// a new point is interpolated from its triangle's origin without a search.
 void replace_with(triangle_mesh& m, const piece& p, const std::vector<std::array<int_point, 3>>& added,
                   const plane_frame& frame, const std::map<std::pair<long long, long long>, vec2>& exact_points,
-                  std::vector<bool>& removed);
+                  std::vector<bool>& removed, const std::vector<int>* origins = nullptr);
 
 // replace_with on a triangulation of `region`. False (nothing changed) if
 // the region cannot be triangulated.

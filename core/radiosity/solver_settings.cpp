@@ -9,6 +9,7 @@ namespace bounce {
 
 mesher_params mesher_params_for(const solver_settings& settings, const scene& s) {
   mesher_params p;
+  p.shadow_outlines = settings.shadow_outlines;
   if (settings.adaptive.enabled) {
     // Adaptive meshing starts coarser and lets elements shoot, so that the
     // shooters refine with the receivers (docs/radiosity.md).

@@ -43,6 +43,9 @@ struct solver_settings {
   // read it. 0: an eighth of the element size (hierarchical, with a view:
   // finer where the view sees elements large).
   double min_edge = 0.0;
+  // Cut the strong lights' umbra and penumbra outlines into the mesh
+  // (mesh/shadow_outlines.h).
+  bool shadow_outlines = false;
   form_factor_params form_factors;
   adaptive_params adaptive;  // progressive: adaptive meshing (its min_edge comes from min_edge above)
   // Hierarchical: the oracle's final tolerance, a fraction of the emitted

@@ -673,6 +673,25 @@ TEST(Cli, SolveWritesStatsAndPly) {
   EXPECT_NE(text.find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
 }
 
+TEST(Cli, ShadowOutlinesAreCutOnRequestForEitherSolver) {
+  // The embedded Cornell box: the short block's shadow under the lamp has
+  // a penumbra narrower than a 150 mm element, and is outlined.
+  scratch_dir dir;
+  const std::string stats = dir.path("stats.json");
+  for (const char* solver : {"--link-tolerance 1e-3", "--solver progressive"}) {
+    run_result r = run(std::string("solve ") + solver + " --max-edge 150 --until 0.05 --stats " + stats);
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(read_text(stats));
+    EXPECT_EQ(j["shadow_outlines"].get<int>(), 0) << solver;
+    r = run(std::string("solve ") + solver + " --shadow-outlines --max-edge 150 --until 0.05 --stats " + stats);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(read_text(stats));
+    EXPECT_EQ(j["shadow_outline_lights"].get<int>(), 1) << solver;
+    EXPECT_GE(j["shadow_outlines"].get<int>(), 1) << solver;
+    EXPECT_GT(j["shadow_triangles_split"].get<int>(), 0) << solver;
+  }
+}
+
 TEST(Cli, AdaptiveMeshingRefinesInSolveRenderAndTrace) {
   scratch_dir dir;
   const std::string stats = dir.path("stats.json"), ply = dir.path("refined.ply");
