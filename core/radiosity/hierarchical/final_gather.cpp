@@ -5,7 +5,9 @@
 #include <utility>
 
 #include "base/parallel.h"
+#include "image/tonemap.h"
 #include "radiosity/hierarchical/node_kernels.h"
+#include "radiosity/hierarchical/oracle.h"
 #include "radiosity/hierarchical/transport.h"
 #include "radiosity/transfer/form_factor.h"
 #include "radiosity/transfer/point_lights.h"
@@ -235,7 +237,17 @@ bool final_gather(hierarchical_solver& solver) {
         for (std::size_t l = h.links.offsets[std::size_t(a)]; l < h.links.offsets[std::size_t(a) + 1]; ++l) {
           const hierarchy_link& link = h.links.links[l];
           const cluster_node& src = tree.nodes[std::size_t(link.source)];
-          const double weight = share * double(link.visibility);
+          // A partly visible link's visibility is the mean over its
+          // receiver; the vertex casts its own rays, so a shadow edge across
+          // a coarse link shows at the vertices it passes between.
+          double visibility = double(link.visibility);
+          if (visibility > 0.0 && visibility < 1.0) {
+            const int point_rays = luminance(node_e[std::size_t(link.source)]) > 0.0
+                                       ? solver.params.gather_emitter_rays
+                                       : solver.params.gather_partial_rays;
+            if (point_rays > 0) visibility = point_visibility(solver, p, normal, link.source, point_rays, lamp_rays);
+          }
+          const double weight = share * visibility;
           ++count;
           if (!(weight > 0.0)) continue;
           if (src.leaf()) {

@@ -1,6 +1,7 @@
 #include "radiosity/hierarchical/oracle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -174,6 +175,41 @@ float pair_visibility(const hierarchical_solver& solver, int i, int j, int count
                                        : 0.0;
     const bool passes = chain ? weight > 0.0 && visible_through_mirrors(solver.context, chain->path, from, to)
                               : !solver.context.occlusion->occluded(from, to);
+    open_rays += passes ? 1 : 0;
+    total += weight;
+    open += passes ? weight : 0.0;
+  }
+  rays += std::uint64_t(count);
+  if (total > 0.0) return float(open / total);
+  return float(open_rays) / float(count);
+}
+
+float point_visibility(const hierarchical_solver& solver, const vec3& p, const vec3& n, int j, int count,
+                       std::uint64_t& rays) {
+  const cluster_tree& tree = solver.hierarchy.tree;
+  std::uint64_t key = mix64(std::uint64_t(j));
+  for (double c : {p.x, p.y, p.z}) key = mix64(key ^ std::bit_cast<std::uint64_t>(c));
+  hash_chain random{mix64(solver.params.seed ^ key)};
+  const double offset = solver.context.offset;
+  const int side = std::max(1, int(std::sqrt(double(count))));
+  double open = 0.0, total = 0.0;
+  int open_rays = 0;
+  for (int k = 0; k < count; ++k) {
+    // Jittered on a side x side grid over the source's (u, v): a shadow
+    // edge crossing the source is found with far less noise than by
+    // independent samples.
+    const int row = k / side, column = k % side;
+    const double u = row < side ? (column + random.uniform()) / side : random.uniform();
+    const double w = row < side ? (row + random.uniform()) / side : random.uniform();
+    const surface_point q = sample_node(tree, solver.mesh(), j, u, w);
+    const vec3 pq = q.position - p;
+    const double length = glm::length(pq);
+    const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, n)) * std::max(0.0, -glm::dot(pq, q.normal)) /
+                                             (length * length * length * length)
+                                       : 0.0;
+    const vec3 from = p + n * offset;
+    const vec3 to = q.position + q.normal * (glm::dot(pq, q.normal) <= 0.0 ? offset : -offset);
+    const bool passes = !solver.context.occlusion->occluded(from, to);
     open_rays += passes ? 1 : 0;
     total += weight;
     open += passes ? weight : 0.0;

@@ -63,6 +63,13 @@ pair_charge charge_through(const hierarchical_solver& solver, const std::vector<
 float pair_visibility(const hierarchical_solver& solver, int i, int j, int count, int chain,
                       std::atomic<std::uint64_t>& rays);
 
+// The visible fraction of source node j seen from point p (normal n), from
+// `count` shadow rays to sample points of j, each weighted by the cosines
+// at its ends over the squared distance. Seeded by the point: the same
+// rays whatever the thread. Adds the rays cast to `rays`.
+float point_visibility(const hierarchical_solver& solver, const vec3& p, const vec3& n, int j, int count,
+                       std::uint64_t& rays);
+
 // What a kept link from i <- j carries: the strata estimate from an inner
 // node to an oriented receiver (except in a closed scene, whose
 // normaliser already takes out the disc estimate's shortfall), else the

@@ -29,6 +29,11 @@ struct hierarchical_params {
   bool normalize_closed = true;
   // Largest final gather (kernel evaluations) made at each publication.
   std::uint64_t gather_budget = 60'000'000;
+  // The final gather's visibility of a partly visible link, cast from the
+  // vertex itself: rays per link from an emitting source, and from any
+  // other (0: the link's own visibility, the mean over its receiver).
+  int gather_emitter_rays = 16;
+  int gather_partial_rays = 2;
   // Element refinement: off unless asked for (tests of the fixed mesh).
   // min_edge 0 means the mesh's max_edge / 8.
   bool split_elements = false;
