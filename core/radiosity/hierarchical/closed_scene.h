@@ -13,8 +13,16 @@ namespace bounce {
 // 4096 of them, 8 rays each) all stay inside the scene.
 bool scene_is_closed(const hierarchical_solver& solver);
 
-// hierarchy.normalizer: 1 / each element's form-factor sum over the plain
-// links when progress.closed, else 1. Made after every link refinement.
+// The scale that brings form-factor sums `emitters` (over the links from
+// emitting sources) and `rest` (the other plain links) to 1: the links
+// from emitters are taken as they are and the rest make up the shortfall,
+// unless there is no rest or the emitters alone reach 1 (a furnace, where
+// everything emits): then all alike.
+closed_scale closed_scale_for(double emitters, double rest);
+
+// hierarchy.normalizer and hierarchy.emitter_links: each element's
+// closed_scale_for its sums when progress.closed, else 1 and no emitter
+// links. Made after every link refinement.
 void update_normalizer(hierarchical_solver& solver);
 
 }  // namespace bounce

@@ -6,6 +6,7 @@
 
 #include "base/parallel.h"
 #include "image/tonemap.h"
+#include "radiosity/hierarchical/closed_scene.h"
 #include "radiosity/hierarchical/node_kernels.h"
 #include "radiosity/hierarchical/oracle.h"
 #include "radiosity/hierarchical/transport.h"
@@ -196,20 +197,22 @@ bool final_gather(hierarchical_solver& solver) {
   // estimate at its receiver's centre; untrusted (-1) where they differ by
   // more than correction_trust, and the strata estimate is then made at
   // each vertex.
+  // (Closed scenes' links from non-emitting sources carry the disc
+  // estimate itself: kept_factor.)
   std::vector<float> correction(h.links.size(), 1.0f);
-  if (!solver.progress.closed)  // closed scenes' links carry the disc estimate itself
-    for_each_block(solver.params.parallel, h.links.size(), 4096, [&](std::size_t b, std::size_t end) {
-      for (std::size_t l = b; l < end; ++l) {
-        const hierarchy_link& link = h.links.links[l];
-        const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
-        const cluster_node& src = tree.nodes[std::size_t(link.source)];
-        if (src.leaf() || !r.oriented) continue;
-        const double at_centre = disc_factor(src, r.centroid, &r.normal);
-        const double ratio = at_centre > 0.0 ? double(link.factor) / at_centre : INFINITY;
-        const bool trusted = ratio <= correction_trust && ratio * correction_trust >= 1.0;
-        correction[l] = trusted ? float(ratio) : -1.0f;
-      }
-    });
+  for_each_block(solver.params.parallel, h.links.size(), 4096, [&](std::size_t b, std::size_t end) {
+    for (std::size_t l = b; l < end; ++l) {
+      const hierarchy_link& link = h.links.links[l];
+      const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
+      const cluster_node& src = tree.nodes[std::size_t(link.source)];
+      if (src.leaf() || !r.oriented) continue;
+      if (solver.progress.closed && !(luminance(node_e[std::size_t(link.source)]) > 0.0)) continue;
+      const double at_centre = disc_factor(src, r.centroid, &r.normal);
+      const double ratio = at_centre > 0.0 ? double(link.factor) / at_centre : INFINITY;
+      const bool trusted = ratio <= correction_trust && ratio * correction_trust >= 1.0;
+      correction[l] = trusted ? float(ratio) : -1.0f;
+    }
+  });
   const vertex_elements around = elements_around_vertices(mesh);
   // A point in a source element's plane sees it edge-on: its own elements
   // and flat neighbours, which round-off would put a hair in front.
@@ -231,7 +234,7 @@ bool final_gather(hierarchical_solver& solver) {
       nodes_above(solver, around, v, nodes);
       const vec3& p = mesh.receive_points[v];
       const vec3& normal = mesh.normals[v];
-      gathered_sum plain;
+      gathered_sum plain, emitted;
       rgb mirrored(0.0), mirrored_direct(0.0);
       for (const auto& [a, share] : nodes) {
         for (std::size_t l = h.links.offsets[std::size_t(a)]; l < h.links.offsets[std::size_t(a) + 1]; ++l) {
@@ -248,20 +251,21 @@ bool final_gather(hierarchical_solver& solver) {
             if (point_rays > 0) visibility = point_visibility(solver, p, normal, link.source, point_rays, lamp_rays);
           }
           const double weight = share * visibility;
+          gathered_sum& into = luminance(node_e[std::size_t(link.source)]) > 0.0 ? emitted : plain;
           ++count;
           if (!(weight > 0.0)) continue;
           if (src.leaf()) {
             const double f = inputs.leaf_factor(src, p, normal);
-            if (f > 0.0) inputs.add(link.source, weight * f, vec3(0.0), 0.0, plain);
+            if (f > 0.0) inputs.add(link.source, weight * f, vec3(0.0), 0.0, into);
           } else if (near(src, p)) {
-            inputs.near_source(link.source, p, normal, weight, plain);
+            inputs.near_source(link.source, p, normal, weight, into);
           } else if (correction[l] < 0.0f) {
-            inputs.strata_source(link.source, p, normal, weight, plain);
+            inputs.strata_source(link.source, p, normal, weight, into);
           } else {
             vec3 towards;
             double send = 0.0;
             const double f = std::min(1.0, disc_factor(src, p, &normal, towards, send) * double(correction[l]));
-            if (f > 0.0) inputs.add(link.source, weight * f, -towards, send, plain);
+            if (f > 0.0) inputs.add(link.source, weight * f, -towards, send, into);
           }
         }
         for (const mirror_link& m : h.mirror_links.of(std::size_t(a))) {
@@ -285,12 +289,16 @@ bool final_gather(hierarchical_solver& solver) {
         }
       }
       // The normaliser is for the plain links alone: a mirror's solid
-      // angle is counted once, by the links to the mirror itself.
-      const double scale = solver.progress.closed && plain.factors > 0.0 ? 1.0 / plain.factors : 1.0;
+      // angle is counted once, by the links to the mirror itself. In a
+      // closed scene the emitters' links are taken as they are, and the
+      // others make up the rest of the vertex's form-factor sum
+      // (closed_scene.h).
+      const closed_scale scale =
+          solver.progress.closed ? closed_scale_for(emitted.factors, plain.factors) : closed_scale{};
       const rgb rho = mesh.vertex_rho[v];
       const rgb lamp = lamps ? point_light_irradiance(s, solver.context, p, normal, lamp_rays) : rgb(0.0);
-      out.total[v] = rho * (plain.b * scale + mirrored + lamp);
-      out.direct[v] = rho * (plain.e * scale + lamp);
+      out.total[v] = rho * (plain.b * scale.rest + emitted.b * scale.emitters + mirrored + lamp);
+      out.direct[v] = rho * (plain.e * scale.rest + emitted.e * scale.emitters + lamp);
       out.mirrored[v] = rho * mirrored_direct;
     }
     evaluations += count;

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "base/parallel.h"
+#include "image/tonemap.h"
 #include "radiosity/hierarchical/closed_scene.h"
 #include "radiosity/hierarchical/element_refinement.h"
 #include "radiosity/hierarchical/oracle.h"
@@ -20,12 +21,13 @@ namespace {
 // One refinement's shared state: the oracle's inputs and what it makes,
 // per thread.
 struct refine_context {
-  refine_context(const hierarchical_solver& s, const std::vector<rgb>& b, double t)
-      : solver(s), node_b(b), tolerance(t) {}
+  refine_context(const hierarchical_solver& s, const std::vector<rgb>& b, const std::vector<rgb>& e, double t)
+      : solver(s), node_b(b), node_e(e), tolerance(t) {}
 
   const hierarchical_solver& solver;
   const std::vector<rgb>& node_b;
-  double tolerance;  // absolute: power units
+  const std::vector<rgb>& node_e;  // the emission pulled to every node
+  double tolerance;                // absolute: power units
   tbb::enumerable_thread_specific<std::vector<hierarchy_link>> links;
   tbb::enumerable_thread_specific<std::vector<mirror_link>> mirror_links;
   tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>> marks;  // (element, bisections)
@@ -89,7 +91,8 @@ void refine_pair(refine_context& ctx, int i, int j, int c) {
     // splits it. Between leaves there is nothing left to split.
     if (!(e.factor > 0.0) && leaves) return;
     if (leaves) ctx.mark(i, j, e.factor, d.visibility, c);
-    ctx.links.local().push_back({i, j, float(kept_factor(solver, i, j, e)), d.visibility});
+    const bool emits = luminance(ctx.node_e[std::size_t(j)]) > 0.0;
+    ctx.links.local().push_back({i, j, float(kept_factor(solver, i, j, e, emits)), d.visibility});
   } else {
     // Through mirrors most pairs see the chain partly or not at all:
     // keeping those that see nothing would cost memory for nothing.
@@ -171,7 +174,9 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   for (std::size_t e = 0; e < solver.light.total.size(); ++e)
     leaving += std::max(0.0, channel_sum(solver.light.total[e])) * solver.mesh().element_areas[e];
   const double power = std::max(leaving, solver.sources.emitted_power) / 3.0;
-  refine_context ctx(solver, node_b, tolerance * power);
+  std::vector<rgb> node_e(h.tree.nodes.size());
+  pull(solver, solver.sources.emission, node_e, nullptr);
+  refine_context ctx(solver, node_b, node_e, tolerance * power);
   if (h.links.empty()) {
     refine_self(ctx, 0);
   } else {

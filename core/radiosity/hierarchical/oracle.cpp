@@ -219,10 +219,10 @@ float point_visibility(const hierarchical_solver& solver, const vec3& p, const v
   return float(open_rays) / float(count);
 }
 
-double kept_factor(const hierarchical_solver& solver, int i, int j, const link_estimate& e) {
+double kept_factor(const hierarchical_solver& solver, int i, int j, const link_estimate& e, bool source_emits) {
   const cluster_node& r = solver.hierarchy.tree.nodes[std::size_t(i)];
   const cluster_node& s = solver.hierarchy.tree.nodes[std::size_t(j)];
-  if (s.leaf() || !r.oriented || solver.progress.closed) return e.factor;
+  if (s.leaf() || !r.oriented || (solver.progress.closed && !source_emits)) return e.factor;
   return strata_factor(solver.hierarchy.tree, solver.mesh(), j, r.centroid, r.normal);
 }
 

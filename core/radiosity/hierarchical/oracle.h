@@ -71,10 +71,11 @@ float point_visibility(const hierarchical_solver& solver, const vec3& p, const v
                        std::uint64_t& rays);
 
 // What a kept link from i <- j carries: the strata estimate from an inner
-// node to an oriented receiver (except in a closed scene, whose
-// normaliser already takes out the disc estimate's shortfall), else the
+// node to an oriented receiver (except in a closed scene from a source
+// that does not emit: the normaliser takes out the disc estimate's
+// shortfall there; an emitter's links are taken as they are), else the
 // estimate's factor.
-double kept_factor(const hierarchical_solver& solver, int i, int j, const link_estimate& e);
+double kept_factor(const hierarchical_solver& solver, int i, int j, const link_estimate& e, bool source_emits);
 
 enum class pair_verdict { split, keep };
 

@@ -23,11 +23,12 @@ void update_residual(hierarchical_solver& solver) {
 // straight), and the emitters' light through mirror links.
 void update_direct(hierarchical_solver& solver) {
   light_parts& light = solver.light;
-  gather_push(solver, solver.sources.emission, light.direct, &light.mirrored);
+  std::vector<rgb>& emitted = solver.buffers.emitted;
+  gather_push(solver, solver.sources.emission, light.direct, &light.mirrored, &emitted);
   ++solver.progress.operator_applications;
   const link_hierarchy& h = solver.hierarchy;
   for (std::size_t e = 0; e < light.direct.size(); ++e) {
-    light.direct[e] = h.rho[e] * (light.direct[e] * h.normalizer[e]) + direct_lamp(solver, e);
+    light.direct[e] = h.rho[e] * normalised(light.direct[e], emitted[e], h.normalizer[e]) + direct_lamp(solver, e);
     light.mirrored[e] = h.rho[e] * light.mirrored[e];
   }
 }
@@ -124,11 +125,12 @@ void restart_hierarchical(hierarchical_solver& solver) {
   const std::size_t nodes = solver.hierarchy.tree.nodes.size();
   clear_links(solver.hierarchy.links, nodes);
   clear_links(solver.hierarchy.mirror_links, nodes);
+  clear_links(solver.hierarchy.emitter_links, nodes);
   solver.split_marks.clear();
   solver.view.node.clear();  // the view stays; its weights come with the links
   solver.view.retarget = false;
   const std::size_t n = solver.mesh().element_count();
-  solver.hierarchy.normalizer.assign(n, 1.0);
+  solver.hierarchy.normalizer.assign(n, closed_scale{});
   solver.light.total = right_hand_side(solver);
   solver.light.direct.resize(n);
   for (std::size_t e = 0; e < n; ++e) solver.light.direct[e] = direct_lamp(solver, e);

@@ -23,13 +23,14 @@ void rebuild_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
   solver.buffers.bins.resize(std::size_t(slots));
   clear_links(h.links, nodes);
   clear_links(h.mirror_links, nodes);
+  clear_links(h.emitter_links, nodes);
   solver.split_marks.clear();
 
   const std::size_t n = mesh.element_count();
   h.rho.resize(n);
   src.emission.resize(n);
   src.lamp.assign(n, rgb(0.0));
-  h.normalizer.assign(n, 1.0);
+  h.normalizer.assign(n, closed_scale{});
   BOUNCE_CHECK(src.specular_lamp.empty() || src.specular_lamp.size() == n);
   std::uint64_t rays = 0;
   for (std::size_t e = 0; e < n; ++e) {

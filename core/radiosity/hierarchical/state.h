@@ -38,6 +38,14 @@ struct solved_meshes {
   bool min_edge_follows_view = true;
 };
 
+// What an element's gathered irradiance is scaled by in a closed scene, so
+// that its form factors sum to 1: the links from emitting sources, and the
+// others (closed_scene.h).
+struct closed_scale {
+  double rest = 1.0;
+  double emitters = 1.0;
+};
+
 // The tree and the links over it: with rho and the normaliser, the
 // operator K (transport.h).
 struct link_hierarchy {
@@ -46,8 +54,13 @@ struct link_hierarchy {
   link_table<hierarchy_link> links;
   std::vector<mirror_chain> chains;  // empty: no links through mirrors
   link_table<mirror_link> mirror_links;
-  std::vector<rgb> rho;            // per element
-  std::vector<double> normalizer;  // per element: 1 / form-factor sum in closed scenes, else 1
+  std::vector<rgb> rho;  // per element
+  // Closed scenes: the plain links whose source emits, taken at face
+  // value (their light is the direct light, found with care); the
+  // normaliser makes up the form-factor sum's shortfall on the other
+  // links. Empty in open scenes.
+  link_table<hierarchy_link> emitter_links;
+  std::vector<closed_scale> normalizer;  // per element (closed_scene.h); 1 and 1 in open scenes
 };
 
 // The right-hand side E + lamp, per element.
@@ -84,6 +97,7 @@ struct transport_buffers {
   std::vector<std::array<rgb, 6>> bins;  // clusters: irradiance per unit area facing +x, -x, ...
   std::vector<std::array<rgb, 6>> sent;  // clusters: what their elements send towards +x, -x, ... (pull)
   std::vector<rgb> mirrored;             // per element: irradiance through the mirror links
+  std::vector<rgb> emitted;              // per element: irradiance through the emitter links (closed scenes)
 };
 
 // The view that leads refinement (view_importance.h).

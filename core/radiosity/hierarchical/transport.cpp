@@ -163,10 +163,16 @@ rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& no
 }
 
 void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out,
-                 std::vector<rgb>* mirrored) {
+                 std::vector<rgb>* mirrored, std::vector<rgb>* emitted) {
   transport_buffers& buf = solver.buffers;
   pull(solver, x, buf.node_b, &buf.sent);
   gather_links(solver, solver.hierarchy.links, out);
+  if (emitted) {
+    if (solver.hierarchy.emitter_links.empty())
+      emitted->assign(out.size(), rgb(0.0));
+    else
+      gather_links(solver, solver.hierarchy.emitter_links, *emitted);
+  }
   if (!mirrored) return;
   if (solver.hierarchy.mirror_links.empty()) {
     mirrored->assign(out.size(), rgb(0.0));
@@ -179,10 +185,11 @@ void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& 
   const link_hierarchy& h = solver.hierarchy;
   const bool mirrors = !h.mirror_links.empty();
   std::vector<rgb>& mirrored = solver.buffers.mirrored;
-  gather_push(solver, x, out, mirrors ? &mirrored : nullptr);
+  std::vector<rgb>& emitted = solver.buffers.emitted;
+  gather_push(solver, x, out, mirrors ? &mirrored : nullptr, &emitted);
   for_each_block(solver.params.parallel, out.size(), 16384, [&](std::size_t b, std::size_t end) {
     for (std::size_t e = b; e < end; ++e)
-      out[e] = h.rho[e] * (out[e] * h.normalizer[e] + (mirrors ? mirrored[e] : rgb(0.0)));
+      out[e] = h.rho[e] * (normalised(out[e], emitted[e], h.normalizer[e]) + (mirrors ? mirrored[e] : rgb(0.0)));
   });
 }
 

@@ -31,11 +31,19 @@ rgb sent_radiosity(const hierarchical_solver& solver, const std::vector<rgb>& no
 
 // Gather and push over the links: out[e] = irradiance on element e from
 // the plain links, and, when `mirrored` is given, mirrored[e] from the
-// links through mirrors. Neither is reflected nor normalised.
+// links through mirrors, and when `emitted` is given, emitted[e] from the
+// emitter links alone (part of out; zeros when there are none). None is
+// reflected nor normalised.
 void gather_push(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out,
-                 std::vector<rgb>* mirrored = nullptr);
+                 std::vector<rgb>* mirrored = nullptr, std::vector<rgb>* emitted = nullptr);
 
-// out = K x (x per element): rho x (normaliser x plain irradiance + mirror
+// The plain irradiance normalised (closed_scene.h): `emitted` is the part
+// of `plain` through the emitter links.
+inline rgb normalised(const rgb& plain, const rgb& emitted, const closed_scale& scale) {
+  return (plain - emitted) * scale.rest + emitted * scale.emitters;
+}
+
+// out = K x (x per element): rho x (normalised plain irradiance + mirror
 // irradiance). The normaliser applies to the plain links alone: a
 // mirror's solid angle is counted once, by the plain links to it.
 void apply_transport(const hierarchical_solver& solver, const std::vector<rgb>& x, std::vector<rgb>& out);

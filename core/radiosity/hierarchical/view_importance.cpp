@@ -98,7 +98,7 @@ void update_view_weights(hierarchical_solver& solver) {
     for (std::size_t e = 0; e < n; ++e) sent[e] = h.rho[e] * passed_on[e];
     gather_push(solver, sent, gathered, &mirrored);
     ++solver.progress.operator_applications;
-    for (std::size_t e = 0; e < n; ++e) passed_on[e] = seen[e] + gathered[e] * h.normalizer[e] + mirrored[e];
+    for (std::size_t e = 0; e < n; ++e) passed_on[e] = seen[e] + gathered[e] * h.normalizer[e].rest + mirrored[e];
   }
   // Scaled so that a scene seen evenly weighs 1: the power leaving all
   // surfaces over what it brings the picture through all bounces,
