@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -22,12 +23,12 @@
 namespace bounce {
 namespace {
 
-// A light as the shadows see it: its corners (one for a point light), the
-// way an area light faces, and its power for the choice of lights.
+// A light as the shadows see it: its corners (none for a light that is not
+// outlined: point lights, curved lamps), the way it faces, and its power
+// for the choice of lights.
 struct light_shape {
   std::vector<vec3> corners;
   vec3 normal{0.0};
-  bool area = false;
   double power = 0.0;
   double width = 0.0;  // the longest distance between two corners
 };
@@ -37,7 +38,6 @@ struct light_shape {
 struct occluder {
   std::vector<vec3> corners;
   std::vector<std::array<vec3, 2>> edges;
-  vec3 lo{INFINITY}, hi{-INFINITY};
 };
 
 struct box3 {
@@ -176,10 +176,6 @@ bool convex_occluder(const triangle_mesh& m, const std::vector<int>& part, doubl
     }
     if (std::abs(hull_area - area) > 1e-6 * hull_area) return false;  // an L-shaped panel, a flat ring
   }
-  for (const vec3& c : out.corners) {
-    out.lo = glm::min(out.lo, c);
-    out.hi = glm::max(out.hi, c);
-  }
   return true;
 }
 
@@ -193,7 +189,7 @@ std::vector<light_shape> strong_lights(const std::vector<triangle_mesh>& tessell
   // vertex on it would need a value for each side. Point lights count in
   // the power but are not outlined (they keep no corners).
   for (const point_light& l : points)
-    all.push_back({{}, vec3(0.0), false, 4.0 * std::numbers::pi * luminance(l.intensity), 0.0});
+    all.push_back({{}, vec3(0.0), 4.0 * std::numbers::pi * luminance(l.intensity), 0.0});
   for (std::size_t s = 0; s < tessellated.size(); ++s) {
     const triangle_mesh& m = tessellated[s];
     const bool has_emitter = std::any_of(m.materials.begin(), m.materials.end(), [&](int mat) {
@@ -210,7 +206,6 @@ std::vector<light_shape> strong_lights(const std::vector<triangle_mesh>& tessell
       }
       for (const auto& [mat, triangles] : by_material) {
         light_shape light;
-        light.area = true;
         vec3 normal_sum(0.0);
         double area = 0.0;
         std::vector<vec3> corners;
@@ -268,7 +263,7 @@ box3 shadow_reach(const light_shape& light, const occluder& o, const box3& scene
   box3 reach;
   for (const vec3& e : light.corners)
     for (const vec3& c : o.corners) {
-      if (light.area && glm::dot(light.normal, c - light.corners.front()) <= tolerance) return box3{};
+      if (glm::dot(light.normal, c - light.corners.front()) <= tolerance) return box3{};
       if (glm::length(c - e) <= tolerance) return box3{};
       reach.add(c);
       reach.add(exit_point(e, c, scene_box));
