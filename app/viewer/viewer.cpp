@@ -322,7 +322,12 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   if (refined_passes_ > 0) refined_.draw();
 
   if (script_.wants_still(frame, view.mesh != nullptr)) keys.trace_still = true;
-  const bool scripted_end = script_.at_end(frame, error_shown, panel_.refine_at_rest ? refined_passes_ : INT_MAX);
+  // A scripted end waits for passes of the solution as it ended: passes of
+  // a solve still running are started over once it converges, and a
+  // screenshot taken between would show the earlier solution.
+  const bool refined_final = refined_solution_ && view.converged && view.solution == refined_solution_;
+  const int final_passes = refined_final ? refined_passes_ : 0;
+  const bool scripted_end = script_.at_end(frame, error_shown, panel_.refine_at_rest ? final_passes : INT_MAX);
   const bool shoot = act.screenshot || keys.screenshot || (scripted_end && !options_.screenshot_path.empty());
   const bool panel_in_shot = scripted_end ? options_.screenshot_panel : panel_.screenshot_with_panel;
   auto screenshot = [&] {
