@@ -142,6 +142,28 @@ pair_charge charge_through(const hierarchical_solver& solver, const std::vector<
   return out;
 }
 
+namespace {
+
+// The visible fraction of a set of shadow rays, each weighted by what it
+// would carry; by count where none carries anything.
+struct visible_fraction {
+  double open = 0.0, total = 0.0;
+  int open_rays = 0, rays = 0;
+
+  void add(double weight, bool passes) {
+    open_rays += passes ? 1 : 0;
+    ++rays;
+    total += weight;
+    open += passes ? weight : 0.0;
+  }
+  float value() const {
+    if (total > 0.0) return float(open / total);
+    return rays > 0 ? float(open_rays) / float(rays) : 0.0f;
+  }
+};
+
+}  // namespace
+
 float pair_visibility(const hierarchical_solver& solver, int i, int j, int count, int c,
                       std::atomic<std::uint64_t>& rays) {
   const mirror_chain* chain = c >= 0 ? &solver.hierarchy.chains[std::size_t(c)] : nullptr;
@@ -156,8 +178,7 @@ float pair_visibility(const hierarchical_solver& solver, int i, int j, int count
   // Each pair counts by what it would carry (the cosines at both ends):
   // pairs that face away from each other carry nothing, and would
   // otherwise count the back of a box as a shadow.
-  double open = 0.0, total = 0.0;
-  int open_rays = 0;
+  visible_fraction fraction;
   for (int k = 0; k < count; ++k) {
     // Stratified along the first coordinate of both ends.
     const double u1 = (k + random.uniform()) / count, v1 = random.uniform();
@@ -173,15 +194,11 @@ float pair_visibility(const hierarchical_solver& solver, int i, int j, int count
     const double weight = length > 0.0 ? std::max(0.0, glm::dot(pq, p.normal)) *
                                              std::max(0.0, -glm::dot(pq, q.normal)) / (length * length)
                                        : 0.0;
-    const bool passes = chain ? weight > 0.0 && visible_through_mirrors(solver.context, chain->path, from, to)
-                              : !solver.context.occlusion->occluded(from, to);
-    open_rays += passes ? 1 : 0;
-    total += weight;
-    open += passes ? weight : 0.0;
+    fraction.add(weight, chain ? weight > 0.0 && visible_through_mirrors(solver.context, chain->path, from, to)
+                               : !solver.context.occlusion->occluded(from, to));
   }
   rays += std::uint64_t(count);
-  if (total > 0.0) return float(open / total);
-  return float(open_rays) / float(count);
+  return fraction.value();
 }
 
 float point_visibility(const hierarchical_solver& solver, const vec3& p, const vec3& n, int j, int count,
@@ -192,8 +209,7 @@ float point_visibility(const hierarchical_solver& solver, const vec3& p, const v
   hash_chain random{mix64(solver.params.seed ^ key)};
   const double offset = solver.context.offset;
   const int side = std::max(1, int(std::sqrt(double(count))));
-  double open = 0.0, total = 0.0;
-  int open_rays = 0;
+  visible_fraction fraction;
   for (int k = 0; k < count; ++k) {
     // Jittered on a side x side grid over the source's (u, v): a shadow
     // edge crossing the source is found with far less noise than by
@@ -209,14 +225,10 @@ float point_visibility(const hierarchical_solver& solver, const vec3& p, const v
                                        : 0.0;
     const vec3 from = p + n * offset;
     const vec3 to = q.position + q.normal * (glm::dot(pq, q.normal) <= 0.0 ? offset : -offset);
-    const bool passes = !solver.context.occlusion->occluded(from, to);
-    open_rays += passes ? 1 : 0;
-    total += weight;
-    open += passes ? weight : 0.0;
+    fraction.add(weight, !solver.context.occlusion->occluded(from, to));
   }
   rays += std::uint64_t(count);
-  if (total > 0.0) return float(open / total);
-  return float(open_rays) / float(count);
+  return fraction.value();
 }
 
 double kept_factor(const hierarchical_solver& solver, int i, int j, const link_estimate& e, bool source_emits) {
