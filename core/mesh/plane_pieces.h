@@ -53,11 +53,12 @@ struct plane_frame {
     e2 = glm::cross(normal, e1);
     unit = std::max(extent, 1e-300) / double(1 << 29);  // |coordinates| <= 2^28
   }
-  ClipperLib::IntPoint project(const vec3& p) const {
-    return {std::llround(glm::dot(p - origin, e1) / unit), std::llround(glm::dot(p - origin, e2) / unit)};
-  }
+  ClipperLib::IntPoint project(const vec3& p) const { return integer(exact(p)); }
   vec2 plane_point(const ClipperLib::IntPoint& p) const { return {double(p.X) * unit, double(p.Y) * unit}; }
+  // In the plane's own coordinates, unrounded, and back.
   vec2 exact(const vec3& p) const { return {glm::dot(p - origin, e1), glm::dot(p - origin, e2)}; }
+  vec3 point(const vec2& x) const { return origin + x.x * e1 + x.y * e2; }
+  ClipperLib::IntPoint integer(const vec2& x) const { return {std::llround(x.x / unit), std::llround(x.y / unit)}; }
 };
 
 inline bool emitting(const material& m) {

@@ -73,18 +73,6 @@ std::vector<vec2> hull_2d(std::vector<vec2> p) {
   return h;
 }
 
-// An orthonormal frame in a plane, for hulls in double precision.
-struct plane_basis {
-  vec3 origin{0.0}, e1{0.0}, e2{0.0};
-  plane_basis(const vec3& n, const vec3& o) : origin(o) {
-    const vec3 a = std::abs(n.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0);
-    e1 = glm::normalize(glm::cross(a, n));
-    e2 = glm::cross(n, e1);
-  }
-  vec2 to2(const vec3& p) const { return {glm::dot(p - origin, e1), glm::dot(p - origin, e2)}; }
-  vec3 to3(const vec2& q) const { return origin + q.x * e1 + q.y * e2; }
-};
-
 // Positions as hash keys, bit for bit.
 struct position_hash {
   std::size_t operator()(const std::array<double, 3>& p) const {
@@ -165,9 +153,9 @@ bool convex_occluder(const triangle_mesh& m, const std::vector<int>& part, doubl
   }
   if (first_normal == vec3(0.0)) return false;
   if (flat) {
-    const plane_basis basis(first_normal, first_point);
+    const plane_frame in_plane(first_normal, first_point, 1.0);
     std::vector<vec2> p;
-    for (const vec3& c : out.corners) p.push_back(basis.to2(c));
+    for (const vec3& c : out.corners) p.push_back(in_plane.exact(c));
     const std::vector<vec2> h = hull_2d(p);
     double hull_area = 0.0;
     for (std::size_t i = 0; i < h.size(); ++i) {
@@ -182,8 +170,10 @@ bool convex_occluder(const triangle_mesh& m, const std::vector<int>& part, doubl
 // The strong lights: the fewest, strongest first, that carry the power
 // share, if at most shadow_outline_max_lights do; else none. Curved lamps
 // and point lights among them are left out.
+// parts_of(s): surface s's connected parts.
 std::vector<light_shape> strong_lights(const std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
-                                       const std::vector<material>& materials, const std::vector<point_light>& points) {
+                                       const std::vector<material>& materials, const std::vector<point_light>& points,
+                                       auto&& parts_of) {
   std::vector<light_shape> all;
   // A point light's shadow edge is a jump in radiance, not in its slope: a
   // vertex on it would need a value for each side. Point lights count in
@@ -196,7 +186,7 @@ std::vector<light_shape> strong_lights(const std::vector<triangle_mesh>& tessell
       return mat >= 0 && std::size_t(mat) < materials.size() && emitting(materials[std::size_t(mat)]);
     });
     if (!has_emitter) continue;
-    for (const std::vector<int>& part : connected_triangles(m)) {
+    for (const std::vector<int>& part : parts_of(s)) {
       // One light per connected emitting part of one material.
       std::map<int, std::vector<int>> by_material;
       for (int t : part) {
@@ -220,10 +210,10 @@ std::vector<light_shape> strong_lights(const std::vector<triangle_mesh>& tessell
         // outlined (it keeps no corners).
         if (flat[s] && glm::length(normal_sum) > 0.0) {
           light.normal = glm::normalize(normal_sum);
-          const plane_basis basis(light.normal, corners.front());
+          const plane_frame in_plane(light.normal, corners.front(), 1.0);
           std::vector<vec2> p;
-          for (const vec3& c : corners) p.push_back(basis.to2(c));
-          for (const vec2& q : hull_2d(p)) light.corners.push_back(basis.to3(q));
+          for (const vec3& c : corners) p.push_back(in_plane.exact(c));
+          for (const vec2& q : hull_2d(p)) light.corners.push_back(in_plane.point(q));
           if (light.corners.size() < 3) light.corners.clear();
           for (const vec3& a : light.corners)
             for (const vec3& b : light.corners) light.width = std::max(light.width, glm::length(a - b));
@@ -271,16 +261,9 @@ box3 shadow_reach(const light_shape& light, const occluder& o, const box3& scene
   return reach;
 }
 
-// A plane of receiving triangles, with what the shadows need of it.
-struct receiving_plane {
-  const plane_group* group = nullptr;
-  double offset = 0.0;
-  box3 box;
-};
-
-ClipperLib::Path integer_ring(const std::vector<vec2>& ring, const plane_frame& frame, const plane_basis& basis) {
+ClipperLib::Path integer_ring(const std::vector<vec2>& ring, const plane_frame& frame) {
   ClipperLib::Path path;
-  for (const vec2& q : ring) path.push_back(frame.project(basis.to3(q)));
+  for (const vec2& q : ring) path.push_back(frame.integer(q));
   if (ClipperLib::Area(path) < 0.0) std::reverse(path.begin(), path.end());
   return path;
 }
@@ -329,7 +312,6 @@ bool shadow_on_plane(const light_shape& light, const occluder& o, const vec3& n,
     if ((ha < -tolerance && hb > tolerance) || (hb < -tolerance && ha > tolerance))
       front.push_back(a + (b - a) * (ha / (ha - hb)));
   }
-  const plane_basis basis(n, frame.origin);
   std::vector<vec2> all;
   std::vector<std::vector<vec2>> from_corner;
   for (const vec3& e : light.corners) {
@@ -337,7 +319,7 @@ bool shadow_on_plane(const light_shape& light, const occluder& o, const vec3& n,
     std::vector<vec2> projected;
     for (const vec3& c : front) {
       const double hc = std::max(height(c), 0.0);
-      projected.push_back(basis.to2(e + (c - e) * (he / (he - hc))));
+      projected.push_back(frame.exact(e + (c - e) * (he / (he - hc))));
     }
     all.insert(all.end(), projected.begin(), projected.end());
     from_corner.push_back(hull_2d(std::move(projected)));
@@ -350,13 +332,13 @@ bool shadow_on_plane(const light_shape& light, const occluder& o, const vec3& n,
     hi = glm::max(hi, q);
   }
   if (glm::length(hi - lo) < shadow_outline_smallest * element_edge) return false;
-  penumbra = integer_ring(outer, frame, basis);
+  penumbra = integer_ring(outer, frame);
   umbra.clear();
   if (from_corner.front().size() < 3) return true;
-  umbra.push_back(integer_ring(from_corner.front(), frame, basis));
+  umbra.push_back(integer_ring(from_corner.front(), frame));
   for (std::size_t i = 1; i < from_corner.size() && !umbra.empty(); ++i) {
     if (from_corner[i].size() < 3) return true;
-    umbra = clip(ClipperLib::ctIntersection, umbra, {integer_ring(from_corner[i], frame, basis)});
+    umbra = clip(ClipperLib::ctIntersection, umbra, {integer_ring(from_corner[i], frame)});
   }
   return true;
 }
@@ -393,8 +375,8 @@ void close_t_junctions(std::vector<polygon_with_holes>& polygons) {
     points.insert(points.end(), p.outer.begin(), p.outer.end());
     for (const auto& h : p.holes) points.insert(points.end(), h.begin(), h.end());
   }
-  std::sort(points.begin(), points.end(),
-            [](const int_point& a, const int_point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  const auto by_x = [](const int_point& a, const int_point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+  std::sort(points.begin(), points.end(), by_x);
   points.erase(std::unique(points.begin(), points.end()), points.end());
   auto fix = [&](std::vector<int_point>& ring) {
     std::vector<int_point> out;
@@ -403,9 +385,7 @@ void close_t_junctions(std::vector<polygon_with_holes>& polygons) {
       out.push_back(a);
       const long long x0 = std::min(a.x, b.x), x1 = std::max(a.x, b.x);
       std::vector<std::pair<double, int_point>> inside;
-      auto it = std::lower_bound(
-          points.begin(), points.end(), int_point{x0, LLONG_MIN},
-          [](const int_point& p, const int_point& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
+      auto it = std::lower_bound(points.begin(), points.end(), int_point{x0, LLONG_MIN}, by_x);
       for (; it != points.end() && it->x <= x1; ++it) {
         const int_point p = *it;
         if (p == a || p == b || p.y < std::min(a.y, b.y) || p.y > std::max(a.y, b.y)) continue;
@@ -547,7 +527,18 @@ shadow_outline_stats cut_shadow_outlines(std::vector<triangle_mesh>& tessellated
                                          const std::vector<material>& materials, const std::vector<point_light>& lights,
                                          double scene_diagonal, double element_edge) {
   shadow_outline_stats stats;
-  const std::vector<light_shape> strong = strong_lights(tessellated, flat, materials, lights);
+  // Each surface's connected parts, found once (for the lights, then for
+  // the occluders) and only if some light is strong.
+  std::vector<std::vector<std::vector<int>>> parts(tessellated.size());
+  std::vector<bool> parted(tessellated.size(), false);
+  auto parts_of = [&](std::size_t s) -> const std::vector<std::vector<int>>& {
+    if (!parted[s]) {
+      parts[s] = connected_triangles(tessellated[s]);
+      parted[s] = true;
+    }
+    return parts[s];
+  };
+  const std::vector<light_shape> strong = strong_lights(tessellated, flat, materials, lights, parts_of);
   if (strong.empty()) return stats;
   stats.lights = strong.size();
   const double tolerance = coplanar_relative_tolerance * scene_diagonal;
@@ -561,8 +552,9 @@ shadow_outline_stats cut_shadow_outlines(std::vector<triangle_mesh>& tessellated
 
   // Occluders: convex parts that emit nothing.
   std::vector<occluder> occluders;
-  for (const triangle_mesh& m : tessellated)
-    for (const std::vector<int>& part : connected_triangles(m)) {
+  for (std::size_t s = 0; s < tessellated.size(); ++s) {
+    const triangle_mesh& m = tessellated[s];
+    for (const std::vector<int>& part : parts_of(s)) {
       bool emits = false;
       for (int t : part) {
         const int mat = m.materials[std::size_t(t)];
@@ -571,6 +563,7 @@ shadow_outline_stats cut_shadow_outlines(std::vector<triangle_mesh>& tessellated
       occluder o;
       if (!emits && convex_occluder(m, part, 1e-6 * scene_diagonal, o)) occluders.push_back(std::move(o));
     }
+  }
   // Each (light, occluder) shadow's reach, for the planes it may fall on.
   struct reach {
     std::size_t light = 0, occluder = 0;
