@@ -6,7 +6,6 @@
 
 #include "base/parallel.h"
 #include "base/random_stream.h"
-#include "image/tonemap.h"
 #include "radiosity/hierarchical/transport.h"
 #include "radiosity/transfer/occlusion.h"
 
@@ -50,7 +49,7 @@ closed_scale closed_scale_for(double emitters, double rest) {
   return sum > 0.0 ? closed_scale{1.0 / sum, 1.0 / sum} : closed_scale{};
 }
 
-void update_normalizer(hierarchical_solver& solver) {
+void update_normalizer(hierarchical_solver& solver, const std::vector<rgb>& node_e) {
   const std::size_t n = solver.mesh().element_count();
   std::vector<closed_scale>& normalizer = solver.hierarchy.normalizer;
   normalizer.assign(n, closed_scale{});
@@ -62,10 +61,8 @@ void update_normalizer(hierarchical_solver& solver) {
   // shortfall of the form-factor sum is the coarse indirect links'.
   // Spread over every link, it made the direct light too bright where
   // the shortfall was large (boxes in a crowded room, 10-12%).
-  std::vector<rgb> node_e(h.tree.nodes.size());
-  pull(solver, solver.sources.emission, node_e, nullptr);
   for (const hierarchy_link& link : h.links.links)
-    if (luminance(node_e[std::size_t(link.source)]) > 0.0) h.emitter_links.links.push_back(link);
+    if (node_emits(node_e, link.source)) h.emitter_links.links.push_back(link);
   index_links(h.emitter_links, h.tree.nodes.size());
   // The form-factor sums: each element's irradiance when every node has
   // radiosity 1, through all the plain links and through the emitters'.

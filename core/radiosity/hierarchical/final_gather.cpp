@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "base/parallel.h"
-#include "image/tonemap.h"
 #include "radiosity/hierarchical/closed_scene.h"
 #include "radiosity/hierarchical/node_kernels.h"
 #include "radiosity/hierarchical/oracle.h"
@@ -206,7 +205,7 @@ bool final_gather(hierarchical_solver& solver) {
       const cluster_node& r = tree.nodes[std::size_t(link.receiver)];
       const cluster_node& src = tree.nodes[std::size_t(link.source)];
       if (src.leaf() || !r.oriented) continue;
-      if (solver.progress.closed && !(luminance(node_e[std::size_t(link.source)]) > 0.0)) continue;
+      if (solver.progress.closed && !node_emits(node_e, link.source)) continue;
       const double at_centre = disc_factor(src, r.centroid, &r.normal);
       const double ratio = at_centre > 0.0 ? double(link.factor) / at_centre : INFINITY;
       const bool trusted = ratio <= correction_trust && ratio * correction_trust >= 1.0;
@@ -240,18 +239,17 @@ bool final_gather(hierarchical_solver& solver) {
         for (std::size_t l = h.links.offsets[std::size_t(a)]; l < h.links.offsets[std::size_t(a) + 1]; ++l) {
           const hierarchy_link& link = h.links.links[l];
           const cluster_node& src = tree.nodes[std::size_t(link.source)];
+          const bool emits = node_emits(node_e, link.source);
           // A partly visible link's visibility is the mean over its
           // receiver; the vertex casts its own rays, so a shadow edge across
           // a coarse link shows at the vertices it passes between.
           double visibility = double(link.visibility);
           if (visibility > 0.0 && visibility < 1.0) {
-            const int point_rays = luminance(node_e[std::size_t(link.source)]) > 0.0
-                                       ? solver.params.gather_emitter_rays
-                                       : solver.params.gather_partial_rays;
+            const int point_rays = emits ? solver.params.gather_emitter_rays : solver.params.gather_partial_rays;
             if (point_rays > 0) visibility = point_visibility(solver, p, normal, link.source, point_rays, lamp_rays);
           }
           const double weight = share * visibility;
-          gathered_sum& into = luminance(node_e[std::size_t(link.source)]) > 0.0 ? emitted : plain;
+          gathered_sum& into = emits ? emitted : plain;
           ++count;
           if (!(weight > 0.0)) continue;
           if (src.leaf()) {

@@ -8,7 +8,6 @@
 #include <tbb/parallel_for.h>
 
 #include "base/parallel.h"
-#include "image/tonemap.h"
 #include "radiosity/hierarchical/closed_scene.h"
 #include "radiosity/hierarchical/element_refinement.h"
 #include "radiosity/hierarchical/oracle.h"
@@ -91,8 +90,7 @@ void refine_pair(refine_context& ctx, int i, int j, int c) {
     // splits it. Between leaves there is nothing left to split.
     if (!(e.factor > 0.0) && leaves) return;
     if (leaves) ctx.mark(i, j, e.factor, d.visibility, c);
-    const bool emits = luminance(ctx.node_e[std::size_t(j)]) > 0.0;
-    ctx.links.local().push_back({i, j, float(kept_factor(solver, i, j, e, emits)), d.visibility});
+    ctx.links.local().push_back({i, j, float(kept_factor(solver, i, j, e, node_emits(ctx.node_e, j))), d.visibility});
   } else {
     // Through mirrors most pairs see the chain partly or not at all:
     // keeping those that see nothing would cost memory for nothing.
@@ -203,7 +201,7 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
     solver.progress.warning = "link limit reached (" + std::to_string(h.links.size()) + " links, " +
                               std::to_string(h.links.size() * sizeof(hierarchy_link) >> 20) +
                               " MiB): the solution keeps coarser links there";
-  update_normalizer(solver);
+  update_normalizer(solver, node_e);
 }
 
 }  // namespace bounce
