@@ -12,6 +12,10 @@ layout(location = 6) in vec2 uv;  // texture coordinates
 
 uniform mat4 view_projection;
 uniform vec3 ambient;        // Cohen 1988 ambient radiosity, zero when switched off
+uniform vec3 eye;
+// The preview before the first solution (display_settings::headlight):
+// rho times this radiance, shaded by a light at the eye. 0: off.
+uniform float headlight;
 
 // Interpolated at the centroid: under MSAA a pixel partly covered by a
 // triangle is shaded at a covered sample, never at the pixel centre outside
@@ -62,14 +66,20 @@ void main() {
 #endif
   gl_Position = view_projection * vec4(position, 1.0);
   has_back_side = element_size < 0.0 ? 1 : 0;
+  vec3 lit = radiosity + reflectance * ambient;
+  if (headlight > 0.0) {
+    vec3 to_eye = eye - position;
+    float facing = dot(to_eye, to_eye) > 0.0 ? abs(dot(normalize(normal), normalize(to_eye))) : 1.0;
+    lit += pi * headlight * reflectance * (0.3 + 0.7 * facing);
+  }
 #ifndef SINGLE_SAMPLE
   float inv_w = 1.0 / gl_Position.w;
-  radiance_w = vec4((radiosity + reflectance * ambient) / pi, 1.0) * inv_w;
+  radiance_w = vec4(lit / pi, 1.0) * inv_w;
   unshot_w = vec4(unshot / pi, abs(element_size)) * inv_w;
   normal_w = normal * inv_w;
   position_w = position * inv_w;
 #endif
-  radiance_s = (radiosity + reflectance * ambient) / pi;
+  radiance_s = lit / pi;
   unshot_s = vec4(unshot / pi, abs(element_size));
   normal_s = normal;
   position_s = position;

@@ -166,6 +166,13 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   outline_first_ = arrays.outline_first;
   outline_count_ = arrays.indices.size() - arrays.outline_first;
   runs_ = arrays.runs;
+  // A refined mesh of the same scene keeps its specular surfaces: their
+  // cube maps keep showing the scene (refreshed in turn); new ones start
+  // black and get a first round at once.
+  const bool same_probes =
+      arrays.probes.size() == probe_surfaces_.size() &&
+      std::equal(arrays.probes.begin(), arrays.probes.end(), probe_surfaces_.begin(),
+                 [](const specular_surface& a, const specular_surface& b) { return a.centre == b.centre; });
   probe_surfaces_ = arrays.probes;
   bounds_min_ = arrays.bounds_min;
   bounds_max_ = arrays.bounds_max;
@@ -173,7 +180,10 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   // its surroundings at about the view's resolution.
   probes_.resize(probe_surfaces_.size(), 128);
   stale_faces_ = 2 * 6 * probe_surfaces_.size();
-  next_face_ = 0;
+  if (!same_probes) {
+    urgent_faces_ = 6 * probe_surfaces_.size();
+    next_face_ = 0;
+  }
   upload_textures(arrays.source);
   const std::vector<float>& data = arrays.vertices;
   const std::vector<unsigned int>& indices = arrays.indices;
@@ -233,13 +243,20 @@ void mesh_renderer::update(const std::vector<glm::vec3>& colours, const glm::vec
   stale_faces_ = 2 * 6 * probe_surfaces_.size();
 }
 
-bool mesh_renderer::refresh_reflections(std::size_t max_faces) {
-  if (stale_faces_ == 0 || probe_surfaces_.empty()) return false;
+bool mesh_renderer::refresh_reflections(std::size_t max_faces, double headlight) {
+  if (probe_surfaces_.empty()) return false;
+  const std::size_t faces = 6 * probe_surfaces_.size();
+  if ((headlight > 0.0) != probes_headlit_) {  // the preview ends (or starts): the probes show another scene
+    probes_headlit_ = headlight > 0.0;
+    urgent_faces_ = faces;
+    stale_faces_ = std::max(stale_faces_, 2 * faces);
+  }
+  if (stale_faces_ == 0) return false;
   const float diagonal = std::max(glm::length(bounds_max_ - bounds_min_), 1e-6f);
   display_settings linear;  // what the probes hold: radiance, unscaled
   linear.curve = tone_curve::linear;
-  const std::size_t faces = 6 * probe_surfaces_.size();
-  for (std::size_t done = 0; done < max_faces && stale_faces_ > 0; ++done, --stale_faces_) {
+  linear.headlight = headlight;
+  for (std::size_t done = 0; (done < max_faces || urgent_faces_ > 0) && stale_faces_ > 0; ++done, --stale_faces_) {
     // The cursor goes on round the faces across updates, so that a solver
     // that updates every few frames still has every face refreshed in turn.
     const std::size_t next = next_face_++ % faces;
@@ -248,8 +265,9 @@ bool mesh_renderer::refresh_reflections(std::size_t max_faces) {
     probes_.render_face(
         probe, int(next % 6), centre, 1e-4f * diagonal, 4.0f * diagonal,
         [&](const glm::mat4& view_projection) { draw_scene(view_projection, centre, linear, int(probe)); });
+    if (urgent_faces_ > 0) --urgent_faces_;
   }
-  return true;
+  return stale_faces_ > 0;
 }
 
 void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3& eye, const display_settings& settings,
@@ -272,6 +290,7 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
     glUniform1i(glGetUniformLocation(program, "false_colour"), int(settings.colours));
     glUniform1f(glGetUniformLocation(program, "largest_element"), std::max(largest_element_, 1e-30f));
     glUniform1i(glGetUniformLocation(program, "highlight_back_faces"), settings.highlight_back_faces ? 1 : 0);
+    glUniform1f(glGetUniformLocation(program, "headlight"), float(settings.headlight));
   };
   // Mirrors and glass first: they stand in front of walls more often than
   // behind them, and what they hide then fails the depth test before its

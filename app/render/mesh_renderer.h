@@ -28,6 +28,11 @@ struct display_settings {
   bool wireframe = false;
   false_colour colours = false_colour::none;
   bool highlight_back_faces = false;
+  // > 0: the preview before the first solution. Every surface adds rho
+  // times this radiance (W / (m^2 sr)), shaded by a light at the eye, so a
+  // scene shows its shapes, and its mirrors what they face, before any
+  // light is shot. 0 once the solution has light of its own.
+  double headlight = 0.0;
 };
 
 class mesh_renderer {
@@ -58,9 +63,14 @@ class mesh_renderer {
   // Renders up to `max_faces` cube-map faces of the specular surfaces'
   // reflection probes that the last upload or update left stale (each
   // update queues two rounds of every face: the second shows mirrors in
-  // mirrors). The window spends a face or two a frame; pictures for files
-  // call it with no limit before drawing. False when nothing was stale.
-  bool refresh_reflections(std::size_t max_faces = std::size_t(-1));
+  // mirrors). A probe that has never shown the scene as it is drawn now (a
+  // new mesh, or the first lit solution after the headlit preview) has its
+  // first round drawn at once whatever the limit: a mirror is never black
+  // while the scene around it is lit. `headlight` is the draw's
+  // display_settings::headlight. The window spends a few milliseconds a
+  // frame; pictures for files call it with no limit before drawing.
+  // Returns whether faces are still stale.
+  bool refresh_reflections(std::size_t max_faces = std::size_t(-1), double headlight = 0.0);
 
   // Draws the mesh, then the scene's background or sky where nothing was
   // drawn (the radiance that the ray-traced still shows where rays miss,
@@ -103,8 +113,10 @@ class mesh_renderer {
   std::vector<material_run> runs_;
   std::vector<specular_surface> probe_surfaces_;
   reflection_probes probes_;
-  std::size_t stale_faces_ = 0;  // faces left to render, counted down through the rounds
-  std::size_t next_face_ = 0;    // the face to render next, counting on through the probes' faces
+  std::size_t stale_faces_ = 0;   // faces left to render, counted down through the rounds
+  std::size_t urgent_faces_ = 0;  // of those, the ones drawn whatever the limit (a first round)
+  bool probes_headlit_ = false;   // what the probes show: the headlit preview
+  std::size_t next_face_ = 0;     // the face to render next, counting on through the probes' faces
   glm::vec3 bounds_min_{0.0f}, bounds_max_{0.0f};
   std::shared_ptr<const scene> textures_source_;  // the scene whose textures are uploaded
   std::vector<gl_texture> textures_;

@@ -46,6 +46,10 @@ const char* const tracing_message = "tracing a still...";
 // How long the camera must rest before the view refines towards the still.
 constexpr double rest_seconds = 0.4;
 
+// The headlit preview's radiance times the exposure: a white surface facing
+// the eye shows at 0.6 before the tone curve.
+constexpr double preview_radiance = 0.6;
+
 bool same_view(const orbit_state& a, const orbit_state& b) {
   return a.target == b.target && a.distance == b.distance && a.yaw == b.yaw && a.pitch == b.pitch;
 }
@@ -308,17 +312,30 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   cam.width = width_;
   cam.height = height_;
   const glm::mat4 view_projection(projection_matrix(cam, bounds(view)) * view_matrix(cam));
+  // Before the solution has light of its own, the scene is previewed
+  // under a headlight (mid-grey at the exposure shown) rather than black.
+  gl::display_settings display = panel_.display;
+  const bool lit = uploaded_solution_ && uploaded_solution_->stats.steps > 0;
+  display.headlight = lit ? 0.0 : preview_radiance / std::max(display.exposure, 1e-30);
   // The mirrors' and glass's probes follow the solution (docs/viewer.md,
-  // "Mirrors and glass"): a cube-map face every fourth frame while the
-  // solver shoots (a face draws the whole scene, and the solution moves on
-  // anyway), every frame once it has stopped.
-  if (view.mesh && (!view.running || frame % 4 == 0)) renderer_.refresh_reflections(1);
+  // "Mirrors and glass"): a first round at once, then faces within a few
+  // milliseconds a frame while the solver shoots (a face draws the whole
+  // scene, and the solution moves on anyway), more once it has stopped.
+  if (view.mesh) {
+    const auto probes_start = clock_type::now();
+    const double budget_ms = view.running ? 4.0 : 20.0;
+    std::size_t faces = !view.running || frame % 4 == 0 ? 1 : 0;
+    while (renderer_.refresh_reflections(faces, display.headlight) && faces > 0) {
+      glFinish();  // llvmpipe draws on the CPU: the time is the faces'
+      if (milliseconds_since(probes_start) >= budget_ms) break;
+    }
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width_, height_);
   glEnable(GL_MULTISAMPLE);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (view.mesh) renderer_.draw(view_projection, glm::vec3(cam.eye), panel_.display);
+  if (view.mesh) renderer_.draw(view_projection, glm::vec3(cam.eye), display);
   if (refined_passes_ > 0) refined_.draw();
 
   if (script_.wants_still(frame, view.mesh != nullptr)) keys.trace_still = true;

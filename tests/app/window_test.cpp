@@ -48,8 +48,10 @@ struct window_run {
 };
 window_run run_window(const x_server& server, const scratch_dir& dir, const std::string& args) {
   window_run r;
-  r.command = "DISPLAY=" + server.display() + " ASAN_OPTIONS=detect_leaks=0 " + std::string(BOUNCE_EXE) + " view " +
-              args + " >" + dir.path("out.txt") + " 2>&1";
+  // The test's own configuration folder: the user's recent list and panel layout stay untouched.
+  r.command = "DISPLAY=" + server.display() + " XDG_CONFIG_HOME=" + dir.path("config") +
+              " ASAN_OPTIONS=detect_leaks=0 " + std::string(BOUNCE_EXE) + " view " + args + " >" + dir.path("out.txt") +
+              " 2>&1";
   const int status = std::system(r.command.c_str());
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.output = read_text(dir.path("out.txt"));
@@ -322,6 +324,83 @@ TEST(Window, TexturesAndAMirrorShowInTheLiveView) {
   ASSERT_GT(mirror_pixels, 1000);
   EXPECT_GT(mirror_red, mirror_pixels / 20);
   EXPECT_GT(mirror_yellow, mirror_pixels / 20);
+}
+
+// Mirrors and glass are never black: from the first frame (the headlit
+// preview, before any light is shot: a run started paused) through the
+// first lit ones, the mirror ball and the glass ball of cornell_caustics
+// show what they face. Before, their cube maps started black and filled a
+// face every fourth frame: 16-20 s of black balls. The one black a mirror
+// may show is the open front of the box behind the camera.
+TEST(Window, MirrorsAndGlassShowTheSceneFromTheFirstFrame) {
+  scratch_dir dir;
+  START_X_SERVER(server, dir);
+  camera c;  // the scene's camera
+  c.eye = vec3(278, 273, -800);
+  c.target = vec3(278, 273, 0);
+  c.fov_y_degrees = 39.3;
+  const vec3 box_min(0, 0, 0), box_max(556, 548.8, 559.2);
+  const vec3 mirror_centre(380, 100, 370), glass_centre(175, 100, 175);
+  const double radius = 100.0;
+  for (const bool paused : {true, false}) {
+    const std::string shots = dir.path(paused ? "paused" : "running");
+    std::filesystem::create_directories(shots);
+    const window_run run = run_window(
+        server, dir,
+        source_path("assets/cornell_caustics/cornell_caustics.json") + " --size 96x96 --frames 6 --screenshots " +
+            shots + " --screenshot-every 1 --no-refine-at-rest --exit" + (paused ? " --paused" : ""));
+    ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
+    for (int frame = 1; frame <= 6; ++frame) {
+      char name[32];
+      std::snprintf(name, sizeof name, "/frame_%05d.png", frame);
+      int w = 0, h = 0;
+      std::vector<unsigned char> rgb;
+      std::string error;
+      ASSERT_TRUE(read_png_rgb8(shots + name, w, h, rgb, error)) << error;
+      c.width = w;
+      c.height = h;
+      int mirror_pixels = 0, mirror_black = 0, glass_pixels = 0, glass_black = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const vec3 d = camera_ray_direction(c, x + 0.5, y + 0.5);
+          const unsigned char* p = &rgb[(std::size_t(y) * w + x) * 3];
+          const bool black = std::max({p[0], p[1], p[2]}) < 8;
+          // Inside 0.9 of a ball's outline (the rim left out).
+          auto inside = [&](const vec3& centre) {
+            const vec3 to_centre = centre - c.eye;
+            return glm::length(to_centre - glm::dot(to_centre, d) * d) < 0.9 * radius;
+          };
+          if (inside(glass_centre)) {
+            ++glass_pixels;
+            glass_black += black;
+          } else if (inside(mirror_centre)) {
+            // The reflected ray, and the side of the box it leaves by.
+            const vec3 oc = c.eye - mirror_centre;
+            const double b = glm::dot(oc, d), t = -b - std::sqrt(b * b - (glm::dot(oc, oc) - radius * radius));
+            const vec3 hit = c.eye + t * d, n = glm::normalize(hit - mirror_centre);
+            const vec3 r = d - 2.0 * glm::dot(d, n) * n;
+            double exit = INFINITY;
+            int exit_axis = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+              if (r[axis] == 0.0) continue;
+              const double to = ((r[axis] > 0 ? box_max[axis] : box_min[axis]) - hit[axis]) / r[axis];
+              if (to < exit) {
+                exit = to;
+                exit_axis = axis;
+              }
+            }
+            if (exit_axis == 2 && r.z < 0.0) continue;  // out through the open front: black is right
+            ++mirror_pixels;
+            mirror_black += black;
+          }
+        }
+      ASSERT_GT(mirror_pixels, 1000);
+      ASSERT_GT(glass_pixels, 1000);
+      const std::string where = std::string(paused ? "paused" : "running") + ", frame " + std::to_string(frame);
+      EXPECT_LT(mirror_black, mirror_pixels / 100) << where << ": mirror " << mirror_black << " of " << mirror_pixels;
+      EXPECT_LT(glass_black, glass_pixels / 100) << where << ": glass " << glass_black << " of " << glass_pixels;
+    }
+  }
 }
 
 }  // namespace
