@@ -1,6 +1,7 @@
 #include "cli/render_command.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -66,7 +67,8 @@ void add_render_options(CLI::App& command, render_options& options) {
   command.add_option("--stats", options.stats_path, "write solver statistics as JSON to this file");
   command.add_flag("--ambient", options.ambient,
                    "add the ambient term of the power still to go (unshot, or the residual; display only)");
-  command.add_flag("--panel", options.panel, "draw the ImGui panel over the view, as in the window");
+  command.add_flag("--panel", options.panel,
+                   "draw the ImGui panel beside the view, as in the window (the PNG is wider)");
   command
       .add_option("--colours", options.colours,
                   "radiance, or false colour of the remaining power (unshot, or the residual) or element size")
@@ -109,7 +111,11 @@ int render_scene(const scene& s, const render_options& options) {
   const patch_mesh& mesh = *setup.mesh;
   radiosity_solver& run = *setup.solver;
   warn_about_mesh(s, mesh);
-  headless::offscreen_view view(s.view.width, s.view.height, options.msaa);
+  // --panel: the panel docked beside the picture, as in the window.
+  const int panel_width = options.panel ? int(std::lround(docked_width(panel_layout{}, 1e9f))) : 0;
+  const int picture_width = s.view.width + panel_width;
+  headless::offscreen_view view(picture_width, s.view.height, options.msaa);
+  view.set_view_width(s.view.width);
   if (!view.ok()) {
     std::fprintf(stderr, "error: %s\n", view.error().c_str());
     return exit_input_error;
@@ -144,7 +150,7 @@ int render_scene(const scene& s, const render_options& options) {
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(float(s.view.width), float(s.view.height));
+    io.DisplaySize = ImVec2(float(picture_width), float(s.view.height));
     io.DeltaTime = 1.0f / 60.0f;
     ImGui_ImplOpenGL3_Init("#version 330 core");
     imgui.active = true;
@@ -173,7 +179,7 @@ int render_scene(const scene& s, const render_options& options) {
 
   auto write_frame = [&](const std::string& path) -> bool {
     const std::vector<unsigned char> rgb = drop_alpha(view.render_rgba8(view_projection, eye, settings, overlay));
-    if (!write_png(path, s.view.width, s.view.height, 3, rgb.data(), error)) {
+    if (!write_png(path, picture_width, s.view.height, 3, rgb.data(), error)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return false;
     }

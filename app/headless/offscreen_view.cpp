@@ -63,7 +63,9 @@ void offscreen_view::draw_into(target& t, const glm::mat4& view_projection, cons
   glViewport(0, 0, width_, height_);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glViewport(0, 0, view_width_ >= 0 ? std::min(view_width_, width_) : width_, height_);
   renderer_->draw(view_projection, eye, settings);
+  glViewport(0, 0, width_, height_);
   if (overlay) overlay();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, t.msaa_fbo);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t.resolve_fbo);

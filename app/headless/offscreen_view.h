@@ -22,6 +22,10 @@ class offscreen_view {
   offscreen_view(int width, int height, int samples = 4);
   ~offscreen_view();
 
+  // The mesh is drawn into the left `width` columns only (the rest is for
+  // an overlay beside it: the panel); default: the whole width.
+  void set_view_width(int width) { view_width_ = width; }
+
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
   gl::mesh_renderer& renderer() { return *renderer_; }
@@ -43,6 +47,7 @@ class offscreen_view {
   std::unique_ptr<gl::mesh_renderer> renderer_;
   std::unique_ptr<target> bytes_, floats_;
   int width_, height_, samples_;
+  int view_width_ = -1;  // < 0: width_
   std::string error_;
 };
 

@@ -41,6 +41,10 @@ panel_actions handle_input(GLFWwindow* window, window_input& input, pointer_stat
     if (!editing_text) keys.quit |= escape(panel, solver_running || still_running).quit;
   keys.quit |= std::exchange(input.quit_now, false);
   if (io.WantCaptureKeyboard) return keys;
+  if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false)) {
+    panel.layout.visible = !panel.layout.visible;
+    keys.save_layout = true;
+  }
   auto down = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
   const double speed = orbit.distance * 0.5 * dt;  // half the viewing distance per second
   orbit_fly(orbit, (down(GLFW_KEY_W) - down(GLFW_KEY_S)) * speed, (down(GLFW_KEY_D) - down(GLFW_KEY_A)) * speed,

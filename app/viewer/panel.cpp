@@ -29,10 +29,16 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"P", "screenshot"},
       {"T", "ray trace a still of the current camera"},
       {"H", "this help"},
+      {"Tab / F1", "hide or show the panel"},
       {"Esc", "close the open window; else quit (asks while working)"},
       {"Ctrl+Q", "quit at once"},
   };
   return keys;
+}
+
+float docked_width(const panel_layout& layout, float window_width) {
+  if (!layout.visible) return 0.0f;
+  return std::clamp(layout.width, std::min(300.0f, window_width), std::max(300.0f, window_width - 160.0f));
 }
 
 std::vector<std::string> find_scenes(const std::string& folder) {
@@ -236,17 +242,48 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
 
 namespace {
 
-// The panel's window. Widgets leave room on their right for the longest
-// label, so that no label is cut off however narrow the panel is made.
-void begin_panel_window() {
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(440, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Bounce");
+// The panel's window, docked at the right edge. Widgets leave room on
+// their right for the longest label, so that no label is cut off however
+// narrow the panel is made.
+void begin_panel_window(const panel_state& state) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float width = docked_width(state.layout, display.x);
+  ImGui::SetNextWindowPos(ImVec2(display.x - width, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width, display.y), ImGuiCond_Always);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
+  ImGui::Begin("Bounce", nullptr,
+               ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoBringToFrontOnFocus |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::PopStyleVar();
   float label_room = 0.0f;
   for (const char* label :
        {"stop at residual", "samples per pixel", "element size", "exposure (stops)", "link tolerance"})
     label_room = std::max(label_room, ImGui::CalcTextSize(label).x);
   ImGui::PushItemWidth(-(label_room + ImGui::GetStyle().ItemInnerSpacing.x));
+}
+
+// The panel's left edge: a grip 12 pixels wide that resizes it, so that a
+// drag meant for it never orbits the camera.
+void draw_panel_edge(panel_state& state, panel_actions& act) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float width = docked_width(state.layout, display.x), grip = 12.0f;
+  ImGui::SetNextWindowPos(ImVec2(display.x - width - 0.5f * grip, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(grip, display.y), ImGuiCond_Always);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));
+  ImGui::Begin("##panel edge", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+  ImGui::InvisibleButton("##resize", ImVec2(grip, display.y));
+  if (ImGui::IsItemHovered() || ImGui::IsItemActive()) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+  if (ImGui::IsItemActive()) {
+    state.layout.width = width - ImGui::GetIO().MouseDelta.x;
+    state.layout.width = docked_width(state.layout, display.x);
+  }
+  if (ImGui::IsItemDeactivated()) act.save_layout = true;
+  ImGui::End();
+  ImGui::PopStyleVar(2);
 }
 
 // A combo of scene paths; choosing one opens it.
@@ -274,8 +311,10 @@ void draw_scene_section(panel_state& state, panel_actions& act) {
 }
 
 // Errors stay visible whatever is collapsed, wrapped in full; the
-// previous scene keeps running.
+// previous scene keeps running. The last action's message follows, at the
+// top where it is seen without scrolling.
 void draw_problems(const panel_state& state, const worker_view& view) {
+  if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   if (!view.error.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.35f, 0.3f, 1));
     ImGui::TextWrapped("%s", view.error.c_str());
@@ -563,9 +602,8 @@ void draw_still_section(panel_state& state, const worker_view& view, const still
   }
 }
 
-// The last action's message and the help button, under the sections.
+// The help button, under the sections.
 void end_panel_window(panel_state& state) {
-  if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   if (ImGui::Button("Help (H)")) state.show_help = true;
   ImGui::PopItemWidth();
   ImGui::End();
@@ -575,17 +613,31 @@ void end_panel_window(panel_state& state) {
 void path_field(const char* label, std::string& value) {
   char path[1024];
   std::snprintf(path, sizeof path, "%s", value.c_str());
-  ImGui::InputText(label, path, sizeof path);
+  ImGui::InputTextWithHint(label, "automatic: scene name and time", path, sizeof path);
   value = path;
 }
 
-// The finished still in a window of its own, with its PNG and PFM saves.
+// The finished still in a window of its own over the view, with its PNG
+// and PFM saves. It stays inside the view's part of the window: the
+// picture is scaled down to fit (saved at full size), and the window is
+// put back inside whenever it would leave it.
 void draw_still_window(panel_state& state, const still_status& still, panel_actions& act) {
   if (!still.texture || !state.show_still) return;
-  ImGui::SetNextWindowPos(ImVec2(460, 8), ImGuiCond_FirstUseEver);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float view_width = std::max(1.0f, display.x - docked_width(state.layout, display.x));
+  const ImGuiStyle& style = ImGui::GetStyle();
+  // Room for the frame, the title and the four lines under the picture.
+  const float chrome_x = 2.0f * style.WindowPadding.x + 2.0f;
+  const float chrome_y = 2.0f * style.WindowPadding.y + 5.0f * ImGui::GetFrameHeightWithSpacing() + 8.0f;
+  const float scale = std::clamp(std::min((view_width - 16.0f - chrome_x) / float(std::max(still.width, 1)),
+                                          (display.y - 16.0f - chrome_y) / float(std::max(still.height, 1))),
+                                 0.05f, 1.0f);
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Appearing);
   ImGui::Begin("Ray-traced still", &state.show_still, ImGuiWindowFlags_AlwaysAutoResize);
-  // Shown at most 480 pixels wide; saved at full size.
-  const float scale = std::min(1.0f, 480.0f / float(std::max(still.width, 1)));
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  const ImVec2 inside(std::clamp(pos.x, 0.0f, std::max(0.0f, view_width - size.x)),
+                      std::clamp(pos.y, 0.0f, std::max(0.0f, display.y - size.y)));
+  if (inside.x != pos.x || inside.y != pos.y) ImGui::SetWindowPos(inside);
   ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(still.texture)),
                ImVec2(float(still.width) * scale, float(still.height) * scale));
   ImGui::TextUnformatted(still.summary.c_str());
@@ -595,6 +647,11 @@ void draw_still_window(panel_state& state, const still_status& still, panel_acti
   path_field("PFM", state.still.pfm_path);
   ImGui::SameLine();
   if (ImGui::Button("Save##pfm")) act.save_still_pfm = true;
+  if (!state.still_message.empty()) {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(240.0f, float(still.width) * scale));
+    ImGui::TextUnformatted(state.still_message.c_str());
+    ImGui::PopTextWrapPos();
+  }
   ImGui::End();
 }
 
@@ -624,15 +681,18 @@ void draw_quit_popup(panel_state& state, const still_status& still, panel_action
 panel_actions draw_panel(panel_state& state, const worker_view& view, double frame_ms, const still_status& still,
                          const error_status& errors) {
   panel_actions act;
-  begin_panel_window();
-  draw_scene_section(state, act);
-  draw_problems(state, view);
-  draw_solver_section(state, view, act);
-  draw_statistics_section(view, frame_ms, errors, act);
-  draw_display_section(state, act);
-  draw_camera_section(state, act);
-  draw_still_section(state, view, still, act);
-  end_panel_window(state);
+  if (state.layout.visible) {
+    begin_panel_window(state);
+    draw_scene_section(state, act);
+    draw_problems(state, view);
+    draw_solver_section(state, view, act);
+    draw_statistics_section(view, frame_ms, errors, act);
+    draw_display_section(state, act);
+    draw_camera_section(state, act);
+    draw_still_section(state, view, still, act);
+    end_panel_window(state);
+    draw_panel_edge(state, act);
+  }
   draw_still_window(state, still, act);
   draw_help_window(state);
   draw_quit_popup(state, still, act);

@@ -20,8 +20,8 @@ struct still_settings {
   int direct = 0;           // Whitted: 0 direct light by shadow rays, 1 all diffuse light from the solution
   bool window_size = true;  // trace at the window's size, else at `size`
   int size[2] = {0, 0};     // width, height; 0: the scene camera's
-  std::string png_path = "bounce-still.png";
-  std::string pfm_path = "bounce-still.pfm";
+  std::string png_path;     // empty: a new name for each save (dated_file_name)
+  std::string pfm_path;
 };
 
 // What the window tells the panel about the still.
@@ -33,6 +33,18 @@ struct still_status {
   std::string summary;
 };
 
+// Where the panel stands: docked at the window's right edge, full height,
+// the view taking the rest of the window (Blender's sidebar). Remembered
+// between runs (user_files.h).
+struct panel_layout {
+  bool visible = true;   // Tab or F1 hides it: the view takes the whole window
+  float width = 400.0f;  // in the window's coordinates; dragged by its left edge
+};
+
+// The docked panel's width in a window `window_width` wide: 0 when hidden,
+// else layout.width kept between 300 and what leaves the view 160 wide.
+float docked_width(const panel_layout& layout, float window_width);
+
 // A named camera kept for a scene.
 struct camera_bookmark {
   std::string name;
@@ -40,13 +52,14 @@ struct camera_bookmark {
 };
 
 struct panel_state {
+  panel_layout layout;
   std::string scene_path;
   std::vector<std::string> asset_scenes;   // offered in a list
   std::vector<std::string> recent_scenes;  // most recent first
   solver_settings solver;                  // mesh density, method and its settings, criterion
   gl::display_settings display;
   bool screenshot_with_panel = false;
-  std::string screenshot_path = "bounce-screenshot.png";
+  std::string screenshot_path;  // empty: a new name for each screenshot (dated_file_name)
   still_settings still;
   camera current_camera;                   // the window's camera this frame (the window sets it)
   std::vector<camera_bookmark> bookmarks;  // of the scene shown
@@ -54,7 +67,8 @@ struct panel_state {
   bool show_help = false;
   bool show_still = false;     // the still's window; closed by its X or Esc, opened by a new still
   bool confirm_quit = false;   // the "quit while working?" popup
-  std::string message;         // last action's result, e.g. where a screenshot went
+  std::string message;         // last action's result, e.g. where a screenshot went: at the panel's top
+  std::string still_message;   // the still window's saves, shown in that window
   std::string warning;         // about the scene as seen (back faces), shown under the errors
   bool refine_at_rest = true;  // refine the view towards the still while the camera rests
   int refined_passes = 0;      // passes of that refinement shown now (the window sets it)
@@ -77,6 +91,7 @@ struct panel_actions {
   bool add_bookmark = false;       // keep current_camera as a new bookmark
   int go_to_bookmark = -1;         // index into bookmarks, or -1
   int delete_bookmark = -1;        // index into bookmarks, or -1
+  bool save_layout = false;        // the panel was resized or hidden: remember its layout
 };
 
 // The camera as the command line's options, to paste after `bounce render`

@@ -1,7 +1,10 @@
 #include "viewer/user_files.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -37,6 +40,11 @@ nlohmann::json read_all_bookmarks() {
 fs::path recent_file() {
   const fs::path folder = config_folder();
   return folder.empty() ? fs::path() : folder / "recent.txt";
+}
+
+fs::path panel_file() {
+  const fs::path folder = config_folder();
+  return folder.empty() ? fs::path() : folder / "panel.json";
 }
 
 }  // namespace
@@ -117,6 +125,55 @@ void save_bookmarks(const std::string& scene_source, const std::vector<camera_bo
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
   std::ofstream(file) << all.dump(2) << "\n";
+}
+
+std::string dated_file_name(const std::string& scene_source, const std::string& kind, const std::string& extension) {
+  std::string name = fs::path(scene_source).stem().string();
+  if (scene_source.starts_with("generated:")) name = scene_source.substr(10);
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  if (name.empty()) name = "bounce";
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
+  const std::string base = name + "-" + kind + "-" + stamp;
+  std::error_code ec;
+  std::string candidate = base + extension;
+  for (int n = 2; fs::exists(candidate, ec); ++n) candidate = base + "-" + std::to_string(n) + extension;
+  return candidate;
+}
+
+panel_layout read_panel_layout() {
+  panel_layout layout;
+  std::ifstream in(panel_file());
+  if (!in) return layout;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object()) return layout;
+  if (const auto it = j.find("visible"); it != j.end() && it->is_boolean()) layout.visible = it->get<bool>();
+  if (const auto it = j.find("width"); it != j.end() && it->is_number()) {
+    const double width = it->get<double>();
+    if (std::isfinite(width) && width > 0.0 && width < 1e5) layout.width = float(width);
+  }
+  return layout;
+}
+
+void save_panel_layout(const panel_layout& layout) {
+  const fs::path file = panel_file();
+  if (file.empty()) return;
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  const fs::path partial = file.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << nlohmann::json{{"visible", layout.visible}, {"width", layout.width}}.dump(2) << "\n";
+    if (!out) {
+      fs::remove(partial, ec);
+      return;
+    }
+  }
+  fs::rename(partial, file, ec);
 }
 
 }  // namespace bounce

@@ -36,4 +36,16 @@ std::vector<std::string> remember_scene(const std::string& source);
 std::vector<camera_bookmark> read_bookmarks(const std::string& scene_source);
 void save_bookmarks(const std::string& scene_source, const std::vector<camera_bookmark>& bookmarks);
 
+// A file name in the current folder that no file has yet, for a picture
+// the user asked for without naming it: "cornell_box-screenshot-
+// 20261128-101530.png" (the scene's name, the kind, local time), then
+// "-2", "-3"... when a file of that name exists.
+std::string dated_file_name(const std::string& scene_source, const std::string& kind, const std::string& extension);
+
+// The panel's layout (shown or hidden, its width), in panel.json in the
+// configuration folder; the defaults when there is none or it does not
+// read. Saved whole (written beside, then renamed over the old one).
+panel_layout read_panel_layout();
+void save_panel_layout(const panel_layout& layout);
+
 }  // namespace bounce

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +88,7 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.set_view |= b.set_view;
   a.quit |= b.quit;
   a.save_camera |= b.save_camera;
+  a.save_layout |= b.save_layout;
   a.add_bookmark |= b.add_bookmark;
   if (b.go_to_bookmark >= 0) a.go_to_bookmark = b.go_to_bookmark;
   if (b.delete_bookmark >= 0) a.delete_bookmark = b.delete_bookmark;
@@ -151,7 +153,8 @@ class viewer_app {
   std::shared_ptr<const radiosity_snapshot> uploaded_solution_;  // a snapshot is new when it is another object
   std::string shown_error_;
   double frame_ms_ = 0.0;
-  int width_ = 0, height_ = 0;  // framebuffer, this frame
+  int width_ = 0, height_ = 0;  // the view's part of the framebuffer (left of the panel), this frame
+  int framebuffer_width_ = 0;   // the whole framebuffer, panel included
 
   still_job still_;  // the ray-traced still, traced on its own thread, shown as a texture
   still_status still_shown_;
@@ -201,6 +204,7 @@ viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& ini
   }
   worker_.load(initial, solver);
   if (options.start_paused) worker_.pause();
+  panel_.layout = read_panel_layout();
   panel_.scene_path = initial.source;
   panel_.solver = solver;
   panel_.refine_at_rest = options.refine_at_rest;
@@ -331,10 +335,11 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glViewport(0, 0, width_, height_);
+  glViewport(0, 0, framebuffer_width_, height_);
   glEnable(GL_MULTISAMPLE);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glViewport(0, 0, width_, height_);  // the view: the window left of the panel
   if (view.mesh) renderer_.draw(view_projection, glm::vec3(cam.eye), display);
   if (refined_passes_ > 0) refined_.draw();
 
@@ -348,10 +353,14 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   const bool shoot = act.screenshot || keys.screenshot || (scripted_end && !options_.screenshot_path.empty());
   const bool panel_in_shot = scripted_end ? options_.screenshot_panel : panel_.screenshot_with_panel;
   auto screenshot = [&] {
-    const std::string& path = scripted_end ? options_.screenshot_path : panel_.screenshot_path;
+    const std::string path = scripted_end ? options_.screenshot_path
+                             : !panel_.screenshot_path.empty()
+                                 ? panel_.screenshot_path
+                                 : dated_file_name(shown_source_ ? shown_source_->source : "", "screenshot", ".png");
     std::string e;
-    panel_.message =
-        save_screenshot(path, width_, height_, e) ? "screenshot: " + std::filesystem::absolute(path).string() : e;
+    panel_.message = save_screenshot(path, panel_in_shot ? framebuffer_width_ : width_, height_, e)
+                         ? "screenshot: " + std::filesystem::absolute(path).string()
+                         : e;
     std::printf("%s\n", panel_.message.c_str());
   };
   if (shoot && !panel_in_shot) screenshot();
@@ -365,6 +374,7 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
       code_ = exit_input_error;
     }
   }
+  glViewport(0, 0, framebuffer_width_, height_);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (shoot && panel_in_shot) screenshot();
   if (scripted_end) {
@@ -464,6 +474,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
     panel_.message = "still cancelled";
   }
   if (act.quit) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+  if (act.save_layout) save_panel_layout(panel_.layout);
   if (act.save_camera) {
     std::ofstream out(panel_.camera_path);
     out << camera_json(panel_.current_camera);
@@ -485,7 +496,9 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
   }
   if ((act.save_still_png || act.save_still_pfm) && still_.result()) {
     const image& picture = still_.result()->picture;
-    const std::string& path = act.save_still_png ? panel_.still.png_path : panel_.still.pfm_path;
+    std::string path = act.save_still_png ? panel_.still.png_path : panel_.still.pfm_path;
+    if (path.empty())
+      path = dated_file_name(view.source ? view.source->source : "", "still", act.save_still_png ? ".png" : ".pfm");
     std::string e;
     bool ok = true;
     if (act.save_still_png) {
@@ -494,7 +507,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
     } else {
       ok = write_pfm(path, picture, e);
     }
-    panel_.message = ok ? "saved " + std::filesystem::absolute(path).string() : e;
+    panel_.still_message = ok ? "saved " + std::filesystem::absolute(path).string() : e;
   }
   if (act.open_scene || act.apply_mesh) panel_.message.clear();
 }
@@ -522,7 +535,12 @@ int viewer_app::run() {
       input_.dropped.clear();
       keys.open_scene = true;
     }
-    glfwGetFramebufferSize(window_, &width_, &height_);
+    glfwGetFramebufferSize(window_, &framebuffer_width_, &height_);
+    int window_width = 0, window_height = 0;
+    glfwGetWindowSize(window_, &window_width, &window_height);
+    const double pixels_per_point = window_width > 0 ? double(framebuffer_width_) / window_width : 1.0;
+    width_ = std::max(
+        0, framebuffer_width_ - int(std::lround(docked_width(panel_.layout, float(window_width)) * pixels_per_point)));
     refine_at_rest(*view);
     lead_solver(*view);
     const panel_actions act = draw(*view, frame, keys);
@@ -538,13 +556,15 @@ int viewer_app::run() {
 }  // namespace
 
 int run_viewer(const scene& initial, const solver_settings& solver, const viewer_options& options) {
-  // The scene camera's aspect, at least 900 pixels on the long side so the
-  // panel leaves room for the view.
+  // The view at the scene camera's aspect, at least 900 pixels on the long
+  // side, and the panel docked beside it.
   const double grow = std::max(1.0, 900.0 / std::max(initial.view.width, initial.view.height));
+  const int view_width = int(initial.view.width * grow), view_height = int(initial.view.height * grow);
+  const panel_layout layout = read_panel_layout();
+  const int panel_width = int(std::lround(docked_width(layout, 1e9f)));
   window_input input;
   std::string error;
-  GLFWwindow* window =
-      open_window(int(initial.view.width * grow), int(initial.view.height * grow), options.msaa, input, error);
+  GLFWwindow* window = open_window(view_width + panel_width, view_height, options.msaa, input, error);
   if (!window) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return exit_input_error;

@@ -332,5 +332,83 @@ TEST(Panel, BookmarksAreKeptPerScene) {
   std::filesystem::remove_all(home);
 }
 
+// The panel docks at the window's right edge, full height, and leaves the
+// rest to the view; hidden, it draws nothing. Its width stays where the
+// view keeps room.
+TEST(Panel, DocksAtTheRightEdgeAndHides) {
+  panel_layout layout;
+  EXPECT_FLOAT_EQ(docked_width(layout, 1280.0f), 400.0f);
+  layout.width = 10.0f;
+  EXPECT_FLOAT_EQ(docked_width(layout, 1280.0f), 300.0f);
+  layout.width = 5000.0f;
+  EXPECT_FLOAT_EQ(docked_width(layout, 1280.0f), 1120.0f);  // the view keeps 160 pixels
+  layout.visible = false;
+  EXPECT_FLOAT_EQ(docked_width(layout, 1280.0f), 0.0f);
+
+  solver_worker worker;
+  worker.load(test_support::default_cornell_box(), hierarchical(1e-4));
+  worker.wait_idle();
+  const auto view = worker.latest();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(1280, 900);
+  io.DeltaTime = 1.0f / 60.0f;
+  unsigned char* pixels = nullptr;
+  int w = 0, h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  panel_state panel;
+  for (int frame = 0; frame < 2; ++frame) {
+    ImGui::NewFrame();
+    draw_panel(panel, *view, 16.0);
+    ImGui::Render();
+  }
+  const ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
+  ASSERT_NE(window, nullptr);
+  EXPECT_FLOAT_EQ(window->Pos.x, 1280.0f - 400.0f);
+  EXPECT_FLOAT_EQ(window->Pos.y, 0.0f);
+  EXPECT_FLOAT_EQ(window->Size.x, 400.0f);
+  EXPECT_FLOAT_EQ(window->Size.y, 900.0f);
+  panel.layout.visible = false;
+  ImGui::NewFrame();
+  draw_panel(panel, *view, 16.0);
+  ImGui::Render();
+  EXPECT_FALSE(ImGui::FindWindowByName("Bounce")->Active);
+  ImGui::DestroyContext();
+}
+
+// The layout reads back as saved; a missing or broken file gives the
+// defaults.
+TEST(Panel, LayoutIsRememberedAndABrokenFileIsIgnored) {
+  test_support::scratch_dir dir;
+  ::setenv("XDG_CONFIG_HOME", dir.root.c_str(), 1);
+  EXPECT_TRUE(read_panel_layout().visible);
+  EXPECT_FLOAT_EQ(read_panel_layout().width, 400.0f);
+  save_panel_layout({false, 512.0f});
+  EXPECT_FALSE(read_panel_layout().visible);
+  EXPECT_FLOAT_EQ(read_panel_layout().width, 512.0f);
+  std::ofstream(dir.path("bounce/panel.json")) << "{\"visible\": 3, \"width\": -1e300";
+  EXPECT_TRUE(read_panel_layout().visible);
+  EXPECT_FLOAT_EQ(read_panel_layout().width, 400.0f);
+  ::unsetenv("XDG_CONFIG_HOME");
+}
+
+// A screenshot or still saved without a name gets one of its own: the
+// scene's name, the kind and the time, numbered when taken.
+TEST(Panel, UnnamedPicturesNeverOverwriteEachOther) {
+  test_support::scratch_dir dir;
+  const std::filesystem::path here = std::filesystem::current_path();
+  std::filesystem::current_path(dir.root);
+  const std::string first = dated_file_name("/somewhere/cornell_box.json", "screenshot", ".png");
+  EXPECT_TRUE(first.starts_with("cornell_box-screenshot-")) << first;
+  EXPECT_TRUE(first.ends_with(".png")) << first;
+  std::ofstream(first) << "x";
+  const std::string second = dated_file_name("/somewhere/cornell_box.json", "screenshot", ".png");
+  EXPECT_NE(second, first);
+  EXPECT_FALSE(std::filesystem::exists(second));
+  EXPECT_TRUE(dated_file_name("generated:box-room-60", "still", ".pfm").starts_with("box-room-60-still-"));
+  std::filesystem::current_path(here);
+}
+
 }  // namespace
 }  // namespace bounce

@@ -70,7 +70,7 @@ TEST(Window, OpensUnderXvfbSolvesAndTakesAScreenshot) {
   std::vector<unsigned char> rgb;
   std::string error;
   ASSERT_TRUE(read_png_rgb8(dir.path("window.png"), w, h, rgb, error)) << error;
-  EXPECT_EQ(w, 900);
+  EXPECT_EQ(w, 900 + 400);  // the 900 x 900 view and the panel docked beside it
   EXPECT_EQ(h, 900);
   // Non-trivial: lit walls (red and green), not one flat colour.
   int reddish = 0, greenish = 0;
@@ -401,6 +401,39 @@ TEST(Window, MirrorsAndGlassShowTheSceneFromTheFirstFrame) {
       EXPECT_LT(glass_black, glass_pixels / 100) << where << ": glass " << glass_black << " of " << glass_pixels;
     }
   }
+}
+
+// The panel is docked beside the view, not on it: the screenshot with the
+// panel is the view's 900 x 900 pixels and the panel to their right, and
+// its left part is the view as saved without the panel at the same frame.
+TEST(Window, ThePanelStandsBesideTheView) {
+  scratch_dir dir;
+  START_X_SERVER(server, dir);
+  const std::string shots = dir.path("shots");
+  std::filesystem::create_directories(shots);
+  const window_run run =
+      run_window(server, dir,
+                 "--max-edge 80 --paused --frames 6 --screenshots " + shots +
+                     " --screenshot-every 6 --no-refine-at-rest --screenshot " + dir.path("window.png") + " --exit");
+  ASSERT_EQ(run.code, 0) << run.command << "\n" << run.output;
+  int w = 0, h = 0, vw = 0, vh = 0;
+  std::vector<unsigned char> window, view;
+  std::string error;
+  ASSERT_TRUE(read_png_rgb8(dir.path("window.png"), w, h, window, error)) << error;
+  ASSERT_TRUE(read_png_rgb8(shots + "/frame_00006.png", vw, vh, view, error)) << error;
+  EXPECT_EQ(vw, 900);
+  EXPECT_EQ(vh, 900);
+  EXPECT_EQ(w, 900 + 400);
+  ASSERT_EQ(h, vh);
+  ASSERT_GT(w, vw);
+  double difference = 0.0;
+  for (int y = 0; y < vh; ++y)
+    for (int x = 0; x < vw; ++x)
+      for (int c = 0; c < 3; ++c)
+        difference +=
+            std::abs(int(window[(std::size_t(y) * w + x) * 3 + c]) - int(view[(std::size_t(y) * vw + x) * 3 + c]));
+  // The panel's edge grip is invisible; a still window is not open.
+  EXPECT_LT(difference / (double(vw) * vh * 3), 0.05);
 }
 
 }  // namespace
