@@ -34,7 +34,9 @@ void add_info_options(CLI::App& command, info_options& options) {
 int run_info(const info_options& options) {
   scene s;
   if (int code = load_for_command(options.scene, nullptr, s); code != exit_ok) return code;
-  double edge = options.max_edge > 0.0 ? options.max_edge : default_max_edge(s);
+  // Curved surfaces tessellated as the default solver (hierarchical) and
+  // the window mesh them, unless a size is asked for.
+  double edge = options.max_edge > 0.0 ? options.max_edge : hierarchical_max_edge(s);
   scene_summary sum;
   if (std::string e = summarize_scene(s, edge, sum); !e.empty()) {
     std::cerr << "error: " << s.source << ": " << e << "\n";
@@ -58,6 +60,7 @@ int run_info(const info_options& options) {
         {"patches", sum.patches},
         {"triangles", sum.triangles},
         {"max_edge", sum.max_edge},
+        {"element_size", {{"hierarchical", hierarchical_max_edge(s)}, {"progressive", default_max_edge(s)}}},
         {"materials", sum.materials},
         {"textures", sum.textures},
         {"emitting_materials", sum.emitting_materials},
@@ -84,6 +87,8 @@ int run_info(const info_options& options) {
             << "polygons:   " << sum.polygons << "\n"
             << "patches:    " << sum.patches << " (Bezier patches + B-spline spans)\n"
             << "triangles:  " << sum.triangles << " (curved surfaces tessellated at max edge " << sum.max_edge << ")\n"
+            << "elements:   " << hierarchical_max_edge(s) << " to start (hierarchical, the default; split where the "
+            << "light needs it), " << default_max_edge(s) << " with --solver progressive\n"
             << "materials:  " << sum.materials << " (" << sum.emitting_materials << " emitting), textures "
             << sum.textures << "\n"
             << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)"

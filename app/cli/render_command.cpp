@@ -221,7 +221,7 @@ int render_scene(const scene& s, const render_options& options) {
   run_solver(run, solver.stop, [&](const radiosity_solver& st) {
     progress.update(solve_progress(st.stats.remaining, solver.stop.remaining, st.stats.seconds, solver.stop.seconds),
                     remaining_text(method, st.stats.remaining));
-    if (options.panel) history.push_back({st.stats.seconds, st.stats.remaining});
+    if (options.panel) history.push_back({st.stats.seconds, st.stats.remaining, st.stats.refinements});
     if (options.frames_dir.empty() || !frames_ok || st.stats.steps == 0) return;
     // A fixed spacing, or doubling counts: the early steps change the picture most.
     const bool due = options.frame_every > 0 ? st.stats.steps % std::uint64_t(options.frame_every) == 0

@@ -34,6 +34,11 @@ void error_tracker::compute_reference(std::shared_ptr<const scene> source, const
   jobs_.post([this, request, source, spp, progress] { trace_reference(request, source, spp, progress); });
 }
 
+void error_tracker::cancel_reference() {
+  const std::lock_guard lock(mutex_);
+  if (progress_) progress_->cancel = true;
+}
+
 void error_tracker::observe(const worker_view& view, const std::string& setting) {
   if (!view.solution || !view.mesh) return;
   {
@@ -84,9 +89,14 @@ error_status error_tracker::status(const std::string& setting) const {
 void error_tracker::trace_reference(camera request, std::shared_ptr<const scene> source, int spp,
                                     std::shared_ptr<trace_progress> progress) {
   if (progress->cancel) return;  // replaced before it started
+  std::string before;            // what the panel said, back if this one is cancelled
   {
     const std::lock_guard lock(mutex_);
     computing_ = true;
+    before = summary_;
+    char line[160];
+    std::snprintf(line, sizeof line, "path tracing the reference: %dx%d, %d spp", request.width, request.height, spp);
+    summary_ = line;
   }
   trace_params params;
   params.method = integrator::path;
@@ -109,7 +119,11 @@ void error_tracker::trace_reference(camera request, std::shared_ptr<const scene>
   }
   const std::lock_guard lock(mutex_);
   computing_ = false;
-  if (!judge) return;
+  if (!judge) {
+    // Cancelled: the reference before it (or none) stands; a replacement says its own.
+    if (progress == progress_) summary_ = judge_ ? before : "reference cancelled: press 'Reference' to path trace one";
+    return;
+  }
   judge_ = judge;
   reference_source_ = source;
   queued_version_ = ~0ull;

@@ -50,6 +50,8 @@ class error_tracker {
   // Path traces a reference of `view` (size x size pixels, `spp` samples)
   // of this scene; measuring starts once it is ready.
   void compute_reference(std::shared_ptr<const scene> source, const camera& view, int size, int spp);
+  // Stops the reference being traced, if any; a reference made before stays.
+  void cancel_reference();
 
   // Called every frame with the newest view and the setting it was solved
   // with: queues the newest solution for measuring, restarts the history

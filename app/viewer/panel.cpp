@@ -53,27 +53,22 @@ std::vector<std::string> find_scenes(const std::string& folder) {
 
 namespace {
 
-// log10 of a quantity sampled at `samples` evenly spaced times in [0, end]
-// (the value last measured at or before each): the plot's x axis is time.
-template <typename history_type, typename quantity>
-std::vector<float> resample_log(const history_type& history, double end, int samples, quantity value) {
-  std::vector<float> out;
-  if (history.empty()) return out;
-  end = std::max(end, 1e-9);
-  std::size_t j = 0;
-  for (int i = 0; i < samples; ++i) {
-    const double t = end * i / (samples - 1);
-    while (j + 1 < history.size() && history[j + 1].seconds <= t) ++j;
-    out.push_back(float(std::log10(std::max(value(history[j]), 1e-12))));
-  }
-  return out;
-}
+// A point of a plot against time; points of one segment are joined.
+struct plot_point {
+  double seconds;
+  double value;
+  std::uint64_t segment = 0;
+};
 
-// A plot of log10 values over time with its axes: the quantity's name on
-// top, percentages at the top, middle and bottom of the y axis, seconds
-// under both ends of the x axis.
-void log_plot(const char* id, const char* title, const std::vector<float>& values, float lo, float hi, double end) {
-  ImGui::TextUnformatted(title);
+// A plot of values over time on a log scale, with its axes: the quantity's
+// name on top, percentages at the top, middle and bottom of the y axis,
+// seconds under both ends of the x axis. A new segment starts with a faint
+// vertical mark instead of a line: when the hierarchical solver refines its
+// links it measures its residual anew, and a line jumping back up would
+// read as divergence. `event` names the marks under the plot.
+void log_plot(const char* title, const std::vector<plot_point>& points, float lo, float hi, double end,
+              const char* event) {
+  ImGui::TextWrapped("%s", title);
   const ImGuiStyle& style = ImGui::GetStyle();
   const std::string labels[3] = {format_percent(std::pow(10.0, double(hi))),
                                  format_percent(std::pow(10.0, double(lo + hi) / 2.0)),
@@ -84,21 +79,67 @@ void log_plot(const char* id, const char* title, const std::vector<float>& value
   const float height = 80.0f, line = ImGui::GetTextLineHeight();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  const ImU32 colour = ImGui::GetColorU32(ImGuiCol_Text);
+  const ImU32 text = ImGui::GetColorU32(ImGuiCol_Text), curve = ImGui::GetColorU32(ImGuiCol_PlotLines);
+  const ImU32 mark = ImGui::GetColorU32(ImGuiCol_TextDisabled);
   for (int k = 0; k < 3; ++k) {
     const float y = origin.y + (height - line) * float(k) / 2.0f;
     draw->AddText(ImVec2(origin.x + axis - style.ItemInnerSpacing.x - ImGui::CalcTextSize(labels[k].c_str()).x, y),
-                  colour, labels[k].c_str());
+                  text, labels[k].c_str());
   }
-  ImGui::SetCursorScreenPos(ImVec2(origin.x + axis, origin.y));
-  const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x);
-  ImGui::PlotLines(id, values.data(), int(values.size()), 0, nullptr, lo, hi, ImVec2(width, height));
+  const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x - axis);
+  const ImVec2 top_left(origin.x + axis, origin.y), bottom_right(origin.x + axis + width, origin.y + height);
+  draw->AddRectFilled(top_left, bottom_right, ImGui::GetColorU32(ImGuiCol_FrameBg), style.FrameRounding);
+  end = std::max(end, 1e-9);
+  auto at = [&](const plot_point& p) {
+    const float t = float(std::clamp(p.seconds / end, 0.0, 1.0));
+    const float v = std::clamp(float(std::log10(std::max(p.value, 1e-30))), lo, hi);
+    return ImVec2(top_left.x + 2.0f + t * (width - 4.0f),
+                  bottom_right.y - 2.0f - (v - lo) / (hi - lo) * (height - 4.0f));
+  };
+  std::vector<ImVec2> run;  // the segment being drawn, one point per pixel column
+  bool marked = false;
+  auto flush = [&] {
+    if (run.size() > 1) draw->AddPolyline(run.data(), int(run.size()), curve, ImDrawFlags_None, 1.0f);
+    if (run.size() <= 4)  // a short segment (a pass of a few steps) shows as dots
+      for (const ImVec2& p : run) draw->AddCircleFilled(p, 2.0f, curve);
+    run.clear();
+  };
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const ImVec2 p = at(points[i]);
+    if (i > 0 && points[i].segment != points[i - 1].segment) {
+      flush();
+      draw->AddLine(ImVec2(p.x, top_left.y + 1.0f), ImVec2(p.x, bottom_right.y - 1.0f), mark);
+      marked = true;
+    }
+    if (!run.empty() && std::floor(run.back().x) == std::floor(p.x))
+      run.back() = p;
+    else
+      run.push_back(p);
+  }
+  flush();
+  ImGui::Dummy(ImVec2(axis + width, height));
   char right[32];
   std::snprintf(right, sizeof right, "%.1f s", end);
-  ImGui::SetCursorScreenPos(ImVec2(origin.x + axis, ImGui::GetCursorScreenPos().y));
+  ImGui::SetCursorScreenPos(ImVec2(top_left.x, ImGui::GetCursorScreenPos().y));
   ImGui::TextUnformatted("0 s");
-  ImGui::SameLine(origin.x + axis + width - ImGui::CalcTextSize(right).x - ImGui::GetWindowPos().x);
+  ImGui::SameLine(top_left.x + width - ImGui::CalcTextSize(right).x - ImGui::GetWindowPos().x);
   ImGui::TextUnformatted(right);
+  if (marked && event) ImGui::TextDisabled("%s", event);
+}
+
+// A log-scale slider whose value is written on the side away from its
+// grab, so that the grab never hides it. Returns whether it moved.
+bool log_slider(const char* label, float& exponent, float lo, float hi, const std::string& shown) {
+  const bool moved = ImGui::SliderFloat(label, &exponent, lo, hi, "", ImGuiSliderFlags_NoRoundToFormat);
+  // The item's rectangle runs on over its label: the frame is the item width.
+  const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
+  const ImVec2 size = ImGui::CalcTextSize(shown.c_str());
+  const float pad = ImGui::GetStyle().FramePadding.x, frame_right = min.x + ImGui::CalcItemWidth();
+  const bool grab_right = exponent > 0.5f * (lo + hi);
+  const float x = grab_right ? min.x + pad : frame_right - pad - size.x;
+  ImGui::GetWindowDrawList()->AddText(ImVec2(x, min.y + 0.5f * (max.y - min.y - size.y)),
+                                      ImGui::GetColorU32(ImGuiCol_Text), shown.c_str());
+  return moved;
 }
 
 }  // namespace
@@ -194,6 +235,17 @@ std::string format_tolerance(double value) {
   return s;
 }
 
+std::string run_state(const worker_view& view) {
+  if (view.converged) return "converged";
+  if (!view.running) return "paused";
+  // Under the stopping point but links not final: the solver is refining
+  // its links towards the tolerance asked for, not iterating.
+  if (view.solution && view.settings.method == solver_method::hierarchical &&
+      view.solution->stats.remaining <= view.settings.stop.remaining && !view.solution->stats.remaining_final)
+    return "refining links";
+  return "solving";
+}
+
 std::vector<std::string> statistics_lines(const worker_view& view, double frame_ms) {
   std::vector<std::string> lines;
   if (!view.solution || !view.mesh) return lines;
@@ -204,10 +256,7 @@ std::vector<std::string> statistics_lines(const worker_view& view, double frame_
   };
   const solver_stats& st = view.solution->stats;
   const bool hierarchical = view.settings.method == solver_method::hierarchical;
-  line("%s: %s", std::string(name_of(view.settings.method)).c_str(),
-       view.converged ? "converged"
-       : view.running ? "solving"
-                      : "paused");
+  line("%s: %s", std::string(name_of(view.settings.method)).c_str(), run_state(view).c_str());
   const double seconds = std::max(st.seconds, 1e-9);
   if (hierarchical) {
     line("elements %zu, vertices %zu", view.mesh->element_count(), view.mesh->vertex_count());
@@ -358,8 +407,7 @@ void draw_element_size(solver_settings& solver, const worker_view& view) {
 // 1e-2 of the emitted power, two digits.
 void draw_link_tolerance(solver_settings& solver, panel_actions& act) {
   float exponent = float(std::log10(std::clamp(solver.link_tolerance, 1e-8, 1e-2)));
-  const std::string shown = format_tolerance(solver.link_tolerance);
-  if (ImGui::SliderFloat("link tolerance", &exponent, -8.0f, -2.0f, shown.c_str(), ImGuiSliderFlags_NoRoundToFormat))
+  if (log_slider("link tolerance", exponent, -8.0f, -2.0f, format_tolerance(solver.link_tolerance)))
     solver.link_tolerance = std::strtod(format_tolerance(std::pow(10.0, double(exponent))).c_str(), nullptr);
   // Restarts when the slider is let go, not at every value passed.
   if (ImGui::IsItemDeactivatedAfterEdit()) act.apply_mesh = true;
@@ -381,14 +429,11 @@ void draw_form_factors(form_factor_params& ff) {
 }
 
 // The stopping point, on a log scale shown as a percentage of the emitted
-// power (ImGui's format string: % doubled). Applies at once.
+// power. Applies at once.
 void draw_stopping_point(stop_criterion& stop, bool hierarchical, panel_actions& act) {
   float until = float(std::log10(std::max(stop.remaining, 1e-12)));
-  std::string shown_stop = format_percent(stop.remaining);
-  for (std::size_t at = shown_stop.find('%'); at != std::string::npos; at = shown_stop.find('%', at + 2))
-    shown_stop.insert(at, 1, '%');
-  if (ImGui::SliderFloat(hierarchical ? "stop at residual" : "stop at unshot", &until, -8.0f, 0.0f, shown_stop.c_str(),
-                         ImGuiSliderFlags_NoRoundToFormat)) {
+  if (log_slider(hierarchical ? "stop at residual" : "stop at unshot", until, -8.0f, 0.0f,
+                 format_percent(stop.remaining))) {
     stop.remaining = std::strtod(format_tolerance(std::pow(10.0, double(until))).c_str(), nullptr);
     act.set_stop = true;
   }
@@ -457,27 +502,31 @@ void draw_convergence_plots(const worker_view& view, const error_status& errors)
   const bool hierarchical = view.settings.method == solver_method::hierarchical;
   const double end = std::max(view.history.empty() ? 0.0 : view.history.back().seconds,
                               errors.history.empty() ? 0.0 : errors.history.back().seconds);
-  const std::vector<float> plot =
-      resample_log(view.history, end, 120, [](const convergence_point& p) { return p.remaining; });
-  if (!plot.empty())
-    log_plot("##unshot",
-             hierarchical ? "residual (share of the power, log scale) against time"
+  std::vector<plot_point> remaining;
+  remaining.reserve(view.history.size());
+  for (std::size_t i = 0; i < view.history.size(); ++i) {
+    const convergence_point& p = view.history[i];
+    remaining.push_back({p.seconds, p.remaining, hierarchical ? p.refinements : 0});
+  }
+  if (!remaining.empty())
+    log_plot(hierarchical ? "residual (share of the power, log scale) against time"
                           : "unshot power (share of the emitted, log scale) against time",
-             plot, -8.0f, 0.0f, end);
-  const std::vector<float> error_plot =
-      resample_log(errors.history, end, 120, [](const error_point& p) { return p.error; });
-  if (!error_plot.empty())
-    log_plot("##error", "error of the picture (relative RMSE, log scale) against time", error_plot, -3.0f, 0.0f, end);
+             remaining, -8.0f, 0.0f, end, "| links refined: the residual is measured anew");
+  std::vector<plot_point> error;
+  for (const error_point& p : errors.history) error.push_back({p.seconds, p.error, 0});
+  if (!error.empty())
+    log_plot("error of the picture (relative RMSE, log scale) against time", error, -3.0f, 0.0f, end, nullptr);
 }
 
-// The reference the error plot measures against: its progress or the
-// button that starts it, then the error now and that of the last run with
-// the same settings.
+// The reference the error plot measures against: its progress with a
+// Cancel, or the button that starts it, then the error now and that of the
+// last run with the same settings.
 void draw_error_reference(const error_status& errors, panel_actions& act) {
   if (errors.computing) {
-    ImGui::ProgressBar(float(errors.progress), ImVec2(-80, 0));
+    const float cancel = ImGui::CalcTextSize("Cancel").x + 2.0f * ImGui::GetStyle().FramePadding.x;
+    ImGui::ProgressBar(float(errors.progress), ImVec2(-(cancel + ImGui::GetStyle().ItemSpacing.x), 0));
     ImGui::SameLine();
-    ImGui::TextUnformatted("reference");
+    if (ImGui::Button("Cancel##reference")) act.cancel_reference = true;
   } else if (ImGui::Button("Reference for the error plot")) {
     act.compute_reference = true;
   }
@@ -510,9 +559,52 @@ void draw_view_buttons(panel_state& state, panel_actions& act) {
   ImGui::Checkbox("with panel", &state.screenshot_with_panel);
 }
 
+// gouraud.frag's false-colour scale at t in [0, 1], as the screen shows
+// it (through the sRGB curve).
+ImU32 heat_colour(float t) {
+  auto channel = [t](float centre) {
+    const float linear = std::clamp(1.5f - std::abs(4.0f * t - centre), 0.0f, 1.0f);
+    const float encoded = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+    return int(std::lround(255.0f * encoded));
+  };
+  return IM_COL32(channel(3.0f), channel(2.0f), channel(1.0f), 255);
+}
+
+// The false colours' legend: the scale as a bar, its two ends labelled.
+void draw_false_colour_legend(gl::false_colour colours, const worker_view& view) {
+  const char* what = colours == gl::false_colour::remaining ? "unshot radiance (W/(m^2 sr), R+G+B), log scale"
+                                                            : "element size (square root of the area)";
+  ImGui::TextWrapped("%s", what);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x), height = ImGui::GetFrameHeight() * 0.6f;
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  constexpr int steps = 32;
+  for (int i = 0; i < steps; ++i) {
+    const float x0 = origin.x + width * float(i) / steps, x1 = origin.x + width * float(i + 1) / steps;
+    draw->AddRectFilledMultiColor(ImVec2(x0, origin.y), ImVec2(x1, origin.y + height), heat_colour(float(i) / steps),
+                                  heat_colour(float(i + 1) / steps), heat_colour(float(i + 1) / steps),
+                                  heat_colour(float(i) / steps));
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  char low[32], high[64];
+  if (colours == gl::false_colour::remaining) {
+    std::snprintf(low, sizeof low, "1e-6 or less");
+    std::snprintf(high, sizeof high, "1e2 or more");
+  } else {
+    std::snprintf(low, sizeof low, "0");
+    const float largest = view.mesh_arrays ? view.mesh_arrays->largest_element : 0.0f;
+    std::snprintf(high, sizeof high, "%.3g scene units", double(largest));
+  }
+  const float start = ImGui::GetCursorPosX();
+  ImGui::TextUnformatted(low);
+  ImGui::SameLine(std::max(start + ImGui::CalcTextSize(low).x + ImGui::GetStyle().ItemSpacing.x,
+                           start + width - ImGui::CalcTextSize(high).x));
+  ImGui::TextUnformatted(high);
+}
+
 // How the solution is shown: exposure, tone curve, wireframe, false
 // colours, refinement at rest.
-void draw_display_section(panel_state& state, panel_actions& act) {
+void draw_display_section(panel_state& state, const worker_view& view, panel_actions& act) {
   if (!ImGui::CollapsingHeader("Display")) return;
   gl::display_settings& display = state.display;
   float stops = float(std::log2(display.exposure));
@@ -527,6 +619,7 @@ void draw_display_section(panel_state& state, panel_actions& act) {
   int colours = int(display.colours);
   ImGui::Combo("colours", &colours, "radiance\0false colour: unshot power\0false colour: element size\0");
   display.colours = static_cast<gl::false_colour>(colours);
+  if (display.colours != gl::false_colour::none) draw_false_colour_legend(display.colours, view);
   ImGui::Checkbox("highlight back faces", &display.highlight_back_faces);
   ImGui::Checkbox("refine at rest", &state.refine_at_rest);
   if (ImGui::IsItemHovered())
@@ -687,7 +780,7 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     draw_problems(state, view);
     draw_solver_section(state, view, act);
     draw_statistics_section(view, frame_ms, errors, act);
-    draw_display_section(state, act);
+    draw_display_section(state, view, act);
     draw_camera_section(state, act);
     draw_still_section(state, view, still, act);
     end_panel_window(state);

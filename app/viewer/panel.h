@@ -84,6 +84,7 @@ struct panel_actions {
   bool frame_scene = false, reset_camera = false;
   bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
   bool compute_reference = false;  // path trace a reference of the camera for the error plot
+  bool cancel_reference = false;   // stop the reference being traced
   bool set_stop = false;           // the stopping point changed: the running solver takes it
   bool set_view = false;           // panel_state::solver.view changed: the running solver is led by it
   bool quit = false;               // close the window
@@ -125,6 +126,11 @@ solver_settings settings_to_run(const solver_settings& panel_settings);
 // What the actions ask of the solver (open, apply, stopping point, pause,
 // resume, step, restart), sent to the worker as the window does.
 void send_to_worker(const panel_actions& act, const panel_state& state, solver_worker& worker);
+
+// What the run shown is doing: "converged" (its stopping point holds),
+// "refining links" (the hierarchical solver under its stopping point,
+// refining links towards the final tolerance), "solving" or "paused".
+std::string run_state(const worker_view& view);
 
 // The statistics of the run shown, one line each: the hierarchical
 // solver's steps, residual and links, or the progressive solver's shots

@@ -271,7 +271,7 @@ void solver_worker::run() {
     exhausted_ = !stepped;  // nothing left: done
     single_step_ = false;
     if (!stepped) continue;
-    history_.push_back({solver_->stats.seconds, solver_->stats.remaining});
+    history_.push_back({solver_->stats.seconds, solver_->stats.remaining, solver_->stats.refinements});
     unpublished_ = true;
     if (wanted_.exchange(false)) publish();
   }

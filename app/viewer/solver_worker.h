@@ -26,8 +26,9 @@
 namespace bounce {
 
 struct convergence_point {
-  double seconds;    // solver time
-  double remaining;  // solver_stats::remaining
+  double seconds;                 // solver time
+  double remaining;               // solver_stats::remaining
+  std::uint64_t refinements = 0;  // solver_stats::refinements: a new count starts a new curve (links refined)
 };
 
 // The convergence history, appended to by the worker after every step and

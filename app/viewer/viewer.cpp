@@ -84,6 +84,7 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.save_still_png |= b.save_still_png;
   a.save_still_pfm |= b.save_still_pfm;
   a.compute_reference |= b.compute_reference;
+  a.cancel_reference |= b.cancel_reference;
   a.set_stop |= b.set_stop;
   a.set_view |= b.set_view;
   a.quit |= b.quit;
@@ -469,6 +470,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
     errors_.compute_reference(view.source, camera_from_orbit(orbit_, scene_camera_), 64, 1024);
     reference_requested_ = true;
   }
+  if (act.cancel_reference) errors_.cancel_reference();
   if (act.cancel_still) {
     still_.cancel();
     panel_.message = "still cancelled";

@@ -110,6 +110,17 @@ TEST(Cli, InfoJsonOnTheCornellBox) {
   EXPECT_GE(j["triangles"].get<int>(), 2 * j["polygons"].get<int>() - 8);
   EXPECT_DOUBLE_EQ(j["bounds"]["max"][1].get<double>(), 548.8);
   EXPECT_DOUBLE_EQ(j["camera"]["fov"].get<double>(), 39.3);
+  // The element sizes the solvers start from, as the window shows them:
+  // 1/10 of the diagonal for the default (hierarchical), 1/24 progressive.
+  double diagonal = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double extent = j["bounds"]["max"][axis].get<double>() - j["bounds"]["min"][axis].get<double>();
+    diagonal += extent * extent;
+  }
+  diagonal = std::sqrt(diagonal);
+  EXPECT_NEAR(j["element_size"]["hierarchical"].get<double>(), diagonal / 10.0, 1e-6 * diagonal);
+  EXPECT_NEAR(j["element_size"]["progressive"].get<double>(), diagonal / 24.0, 1e-6 * diagonal);
+  EXPECT_DOUBLE_EQ(j["max_edge"].get<double>(), j["element_size"]["hierarchical"].get<double>());
 }
 
 TEST(Cli, InfoOnEveryShippedScene) {

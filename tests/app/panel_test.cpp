@@ -410,5 +410,32 @@ TEST(Panel, UnnamedPicturesNeverOverwriteEachOther) {
   std::filesystem::current_path(here);
 }
 
+// The status says what the run does: under its stopping point with links
+// not final, the hierarchical solver is refining links, not solving.
+TEST(Panel, TheStatusTellsRefiningLinksFromSolving) {
+  worker_view view;
+  view.settings.method = solver_method::hierarchical;
+  view.settings.stop.remaining = 0.01;
+  auto solution = std::make_shared<radiosity_snapshot>();
+  solution->stats.remaining = 4e-6;
+  solution->stats.remaining_final = false;
+  view.solution = solution;
+  view.running = true;
+  EXPECT_EQ(run_state(view), "refining links");
+  solution->stats.remaining = 0.2;
+  EXPECT_EQ(run_state(view), "solving");
+  solution->stats.remaining = 4e-6;
+  solution->stats.remaining_final = true;
+  view.running = false;
+  view.converged = true;
+  EXPECT_EQ(run_state(view), "converged");
+  view.converged = false;
+  EXPECT_EQ(run_state(view), "paused");
+  view.settings.method = solver_method::progressive;
+  solution->stats.remaining_final = false;
+  view.running = true;
+  EXPECT_EQ(run_state(view), "solving");
+}
+
 }  // namespace
 }  // namespace bounce

@@ -287,6 +287,30 @@ TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
   EXPECT_FALSE(tracker.status("another setting").last.has_value());
 }
 
+// A reference being traced says so, and Cancel stops it: nothing is
+// measured, and the panel is told it was cancelled.
+TEST(ErrorTracker, AReferenceSaysItIsBeingTracedAndCanBeCancelled) {
+  solver_worker worker;
+  error_tracker tracker;
+  worker.load(test_support::default_cornell_box(), coarse(1e-3));
+  worker.wait_idle();
+  const auto view = worker.latest();
+  tracker.compute_reference(view->source, view->source->view, 64, 1 << 16);  // minutes: it must be cancelled
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!tracker.status("s").computing && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(tracker.status("s").computing);
+  EXPECT_NE(tracker.status("s").summary.find("path tracing the reference: 64x64"), std::string::npos)
+      << tracker.status("s").summary;
+  tracker.cancel_reference();
+  while (tracker.status("s").computing && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const error_status status = tracker.status("s");
+  EXPECT_FALSE(status.computing);
+  EXPECT_FALSE(status.ready);
+  EXPECT_NE(status.summary.find("cancelled"), std::string::npos) << status.summary;
+}
+
 // The window's still with progressive photon mapping shows each photon
 // pass as it comes: results with rising versions before the last, each
 // saying how many passes it holds, then the finished still.
