@@ -8,13 +8,15 @@
 #include "common/exit_code.h"
 #include "scene/camera_file.h"
 #include "scene/scene_io.h"
+#include "scene/warning_groups.h"
 
 namespace bounce {
 namespace {
 
+// Grouped by what they say: a model with thousands of degenerate faces
+// gets one line with the count.
 void print_warnings(const load_report& report) {
-  for (const std::string& w : report.warnings) std::cerr << "warning: " << w << "\n";
-  if (report.dropped_faces) std::cerr << "warning: " << report.dropped_faces << " degenerate face(s) dropped\n";
+  for (const warning_group& g : group_warnings(report.warnings)) std::cerr << "warning: " << describe(g) << "\n";
 }
 
 }  // namespace
@@ -28,7 +30,8 @@ void add_scene_argument(CLI::App& command, std::string& path) {
 // applies the camera overrides. Prints the error and returns its exit code
 // (exit_ok on success): a scene that cannot be used is an input error, an
 // override that makes the camera invalid a usage error.
-int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s) {
+int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s,
+                     std::vector<std::string>* warnings) {
   load_report report;
   if (!load_scene(path.empty() ? default_scene_path : path, s, report)) {
     print_warnings(report);  // what was said before the failure often explains it
@@ -36,6 +39,7 @@ int load_for_command(const std::string& path, const camera_options* camera_overr
     return exit_input_error;
   }
   print_warnings(report);
+  if (warnings) *warnings = report.warnings;
   if (camera_overrides) {
     // A camera file is a file that may be unusable (exit 1); the options
     // typed over it are the command line (exit 2).

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "cli/camera_options.h"
 #include "scene/scene.h"
@@ -17,8 +18,10 @@ namespace bounce {
 void add_scene_argument(CLI::App& command, std::string& path);
 
 // Loads the scene named on a command line (empty: the embedded Cornell box)
-// and applies the camera overrides (null: none); prints the warnings, then
-// any error, and returns its exit code (exit_ok when loaded).
-int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s);
+// and applies the camera overrides (null: none); prints the warnings
+// (grouped: warning_groups.h), then any error, and returns its exit code
+// (exit_ok when loaded). `warnings`, when given, receives them one by one.
+int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s,
+                     std::vector<std::string>* warnings = nullptr);
 
 }  // namespace bounce

@@ -63,12 +63,14 @@ std::string check_view_options(const CLI::App& command, view_options& options) {
 
 int run_view(const view_options& options) {
   scene s;
-  if (int code = load_for_command(options.scene, &options.camera, s); code != exit_ok) return code;
+  viewer_options window = options.window;
+  if (int code = load_for_command(options.scene, &options.camera, s, &window.load_warnings); code != exit_ok)
+    return code;
   solver_settings solver = options.solver;
   // The scene camera leads the first steps; the window re-targets at its
   // own camera whenever it rests (hierarchical only).
   if (!options.view_independent && solver.method == solver_method::hierarchical) solver.view = s.view;
-  return run_viewer(s, solver, options.window);
+  return run_viewer(s, solver, window);
 }
 
 }  // namespace bounce

@@ -376,6 +376,27 @@ void draw_problems(const panel_state& state, const worker_view& view) {
   }
 }
 
+// What loading the scene warned of, grouped by kind with counts, in a
+// section of its own; its header says "new" until it has been opened.
+void draw_import_report(panel_state& state, const worker_view& view) {
+  if (!view.warnings || view.warnings->empty()) return;
+  if (state.warnings_grouped != view.warnings) {
+    state.warning_groups = group_warnings(*view.warnings);
+    state.warnings_grouped = view.warnings;
+  }
+  const bool unread = state.warnings_read != view.warnings;
+  char header[160];
+  std::snprintf(header, sizeof header, "Import report: %zu warning%s, %zu kind%s%s###import", view.warnings->size(),
+                view.warnings->size() == 1 ? "" : "s", state.warning_groups.size(),
+                state.warning_groups.size() == 1 ? "" : "s", unread ? " (new)" : "");
+  if (unread) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.8f, 0.3f, 1));
+  const bool open = ImGui::CollapsingHeader(header);
+  if (unread) ImGui::PopStyleColor();
+  if (!open) return;
+  state.warnings_read = view.warnings;
+  for (const warning_group& g : state.warning_groups) ImGui::BulletText("%s", describe(g).c_str());
+}
+
 // A new solver restarts at once (the mesh is kept when it meshes the
 // same); the other settings wait for Apply.
 void draw_solver_choice(panel_state& state, panel_actions& act) {
@@ -778,6 +799,7 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     begin_panel_window(state);
     draw_scene_section(state, act);
     draw_problems(state, view);
+    draw_import_report(state, view);
     draw_solver_section(state, view, act);
     draw_statistics_section(view, frame_ms, errors, act);
     draw_display_section(state, view, act);

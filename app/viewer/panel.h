@@ -8,6 +8,7 @@
 
 #include "radiosity/solver_settings.h"
 #include "render/mesh_renderer.h"
+#include "scene/warning_groups.h"
 #include "viewer/error_tracker.h"
 #include "viewer/solver_worker.h"
 
@@ -65,11 +66,16 @@ struct panel_state {
   std::vector<camera_bookmark> bookmarks;  // of the scene shown
   std::string camera_path = "bounce-camera.json";
   bool show_help = false;
-  bool show_still = false;     // the still's window; closed by its X or Esc, opened by a new still
-  bool confirm_quit = false;   // the "quit while working?" popup
-  std::string message;         // last action's result, e.g. where a screenshot went: at the panel's top
-  std::string still_message;   // the still window's saves, shown in that window
-  std::string warning;         // about the scene as seen (back faces), shown under the errors
+  bool show_still = false;    // the still's window; closed by its X or Esc, opened by a new still
+  bool confirm_quit = false;  // the "quit while working?" popup
+  std::string message;        // last action's result, e.g. where a screenshot went: at the panel's top
+  std::string still_message;  // the still window's saves, shown in that window
+  std::string warning;        // about the scene as seen (back faces), shown under the errors
+  // The import report: the groups of the shown scene's load warnings
+  // (made once per scene), and the warnings last seen with the section open
+  // (others are "new").
+  std::shared_ptr<const std::vector<std::string>> warnings_grouped, warnings_read;
+  std::vector<warning_group> warning_groups;
   bool refine_at_rest = true;  // refine the view towards the still while the camera rests
   int refined_passes = 0;      // passes of that refinement shown now (the window sets it)
 };

@@ -21,6 +21,7 @@ struct solver_worker::command {
   solver_settings settings;
   stop_criterion criterion;
   std::optional<camera> view;
+  std::vector<std::string> warnings;  // load, load_file: what loading the scene said
 };
 
 void convergence_log::push_back(const convergence_point& p) {
@@ -56,11 +57,12 @@ void solver_worker::enqueue(std::unique_ptr<command> c) {
   wake_.notify_all();
 }
 
-void solver_worker::load(scene s, const solver_settings& settings) {
+void solver_worker::load(scene s, const solver_settings& settings, std::vector<std::string> warnings) {
   auto c = std::make_unique<command>();
   c->what = command::kind::load;
   c->s = std::move(s);
   c->settings = settings;
+  c->warnings = std::move(warnings);
   enqueue(std::move(c));
 }
 
@@ -129,6 +131,7 @@ void solver_worker::handle(command& c) {
       }
       if (c.settings.view) c.settings.view = s.view;  // a scene opened is first led by its own camera
       c.s = std::move(s);
+      c.warnings = std::move(report.warnings);
       [[fallthrough]];
     }
     case kind::reload:
@@ -159,6 +162,7 @@ void solver_worker::handle(command& c) {
         mesh = fresh.mesh;
       }
       solver_.reset();
+      if (s != scene_) warnings_ = std::make_shared<const std::vector<std::string>>(std::move(c.warnings));
       scene_ = s;
       mesh_ = mesh;
       settings_ = c.settings;
@@ -210,6 +214,7 @@ void solver_worker::publish() {
   v->mesh_version = mesh_version_;
   v->run = run_;
   v->source = scene_;
+  v->warnings = warnings_;
   v->mesh = solver_ && refined_mesh(*solver_) ? refined_mesh(*solver_) : mesh_;  // the solver may refine it
   v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
   v->settings = settings_;

@@ -72,6 +72,8 @@ struct worker_view {
   bool running = false;                                   // stepping now
   bool converged = false;                                 // the stopping criterion holds (or nothing is left)
   std::string error;  // last failure (bad scene, mesh too large); the previous scene stays
+  // What loading `source` warned of, one by one (warning_groups.h groups them).
+  std::shared_ptr<const std::vector<std::string>> warnings;
 };
 
 class solver_worker {
@@ -81,8 +83,9 @@ class solver_worker {
   solver_worker(const solver_worker&) = delete;
   solver_worker& operator=(const solver_worker&) = delete;
 
-  // Meshes the scene with these settings and starts solving at once.
-  void load(scene s, const solver_settings& settings);
+  // Meshes the scene with these settings and starts solving at once;
+  // `warnings` are what loading it said, published with it.
+  void load(scene s, const solver_settings& settings, std::vector<std::string> warnings = {});
   // Loads a scene file (path) on the worker; errors arrive in the view.
   void load_file(const std::string& path, const solver_settings& settings);
   // Solves the current scene again with other settings (another solver,
@@ -131,6 +134,7 @@ class solver_worker {
 
   // Worker-thread state.
   std::shared_ptr<const scene> scene_;
+  std::shared_ptr<const std::vector<std::string>> warnings_;  // scene_'s
   std::shared_ptr<const patch_mesh> mesh_;
   std::unique_ptr<radiosity_solver> solver_;
   solver_settings settings_;

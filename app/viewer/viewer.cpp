@@ -25,6 +25,7 @@
 #include "scene/framing.h"
 #include "scene/orbit.h"
 #include "scene/scene_io.h"
+#include "scene/warning_groups.h"
 #include "trace/back_faces.h"
 #include "viewer/error_tracker.h"
 #include "viewer/input.h"
@@ -203,7 +204,7 @@ viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& ini
     std::fprintf(stderr, "error: %s", error.c_str());
     code_ = exit_input_error;
   }
-  worker_.load(initial, solver);
+  worker_.load(initial, solver, options.load_warnings);
   if (options.start_paused) worker_.pause();
   panel_.layout = read_panel_layout();
   panel_.scene_path = initial.source;
@@ -239,6 +240,7 @@ void viewer_app::take_published_work(const worker_view& view) {
     uploaded_solution_.reset();
   }
   if (view.source != shown_source_) {
+    const bool opened_in_window = shown_source_ != nullptr;
     if (shown_source_) {  // a newly opened scene brings its camera, and the old still goes
       scene_camera_ = view.source->view;
       orbit_ = orbit_from_camera(scene_camera_);
@@ -254,6 +256,11 @@ void viewer_app::take_published_work(const worker_view& view) {
         back_faces_ = back_face_fraction(*source, source->view, ray_scene(*source));
       });
       glfwSetWindowTitle(window_, window_title(view.source->source).c_str());
+      // A scene opened in the window says its warnings on the terminal too,
+      // grouped as the command line does (the first scene's were said there).
+      if (opened_in_window && view.warnings)
+        for (const warning_group& g : group_warnings(*view.warnings))
+          std::fprintf(stderr, "warning: %s\n", describe(g).c_str());
       panel_.recent_scenes = remember_scene(view.source->source);
       panel_.bookmarks = read_bookmarks(view.source->source);
     }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "radiosity/solver_settings.h"
 #include "scene/scene.h"
@@ -20,8 +21,9 @@ struct viewer_options {
   bool error_plot = false;      // path trace a reference at the start and plot the solution's error against it
   std::string screenshots_dir;  // scripted run: the view (no panel) every `screenshot_every` frames, as PNGs
   int screenshot_every = 0;
-  bool refine_at_rest = true;  // --no-refine-at-rest: the live Gouraud view only
-  int refined_passes = 0;      // scripted run: the last frame waits until the view shows this many passes
+  bool refine_at_rest = true;              // --no-refine-at-rest: the live Gouraud view only
+  int refined_passes = 0;                  // scripted run: the last frame waits until the view shows this many passes
+  std::vector<std::string> load_warnings;  // the scene's, from loading it: the panel's import report
 };
 
 // Returns an exit code; without a display it says so and returns 1.

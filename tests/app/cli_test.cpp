@@ -190,8 +190,22 @@ TEST(Cli, WarningsGoToStandardError) {
   run_result r = run("info " + path);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("warning: " + path + ":8: degenerate face"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("1 degenerate face(s) dropped"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'Ka' is not used"), std::string::npos) << r.err;
+}
+
+// Warnings of one kind come as one line with their count, not one line each.
+TEST(Cli, ManyWarningsOfAKindAreOneLine) {
+  scratch_dir dir;
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\n";
+  for (int i = 0; i < 500; ++i) obj += "f 1 2 4\n";  // lines 6 to 505: zero area
+  const std::string path = dir.write("many.obj", obj);
+  run_result r = run("info " + path);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: degenerate face (zero area) dropped: 500 times (first at " + path + ":6, last at " +
+                       path + ":505)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_LT(std::count(r.err.begin(), r.err.end(), '\n'), 5) << r.err;
 }
 
 TEST(Cli, UsageErrorsExitTwo) {

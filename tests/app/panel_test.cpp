@@ -437,5 +437,40 @@ TEST(Panel, TheStatusTellsRefiningLinksFromSolving) {
   EXPECT_EQ(run_state(view), "solving");
 }
 
+// The import report groups the scene's warnings with their counts, and
+// its header says "new" until the section has been opened.
+TEST(Panel, TheImportReportGroupsWarningsAndIsNewUntilRead) {
+  worker_view view;
+  std::vector<std::string> warnings;
+  for (int line = 1; line <= 300; ++line)
+    warnings.push_back("m.obj:" + std::to_string(line) + ": degenerate face (zero area) dropped");
+  warnings.push_back("m.mtl:2: 'Ka' is not used by Bounce; ignored");
+  view.warnings = std::make_shared<const std::vector<std::string>>(warnings);
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(1280, 900);
+  io.DeltaTime = 1.0f / 60.0f;
+  unsigned char* pixels = nullptr;
+  int w = 0, h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  panel_state panel;
+  auto frame = [&] {
+    ImGui::NewFrame();
+    draw_panel(panel, view, 16.0);
+    ImGui::Render();
+  };
+  frame();
+  ASSERT_EQ(panel.warning_groups.size(), 2u);
+  EXPECT_EQ(panel.warning_groups[0].count, 300u);
+  EXPECT_EQ(panel.warnings_read, nullptr);  // closed: unread
+  ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
+  ASSERT_NE(window, nullptr);
+  window->StateStorage.SetInt(window->GetID("###import"), 1);  // opened, as if clicked
+  frame();
+  EXPECT_EQ(panel.warnings_read, view.warnings);
+  ImGui::DestroyContext();
+}
+
 }  // namespace
 }  // namespace bounce
