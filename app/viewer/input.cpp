@@ -40,11 +40,11 @@ panel_actions handle_input(GLFWwindow* window, window_input& input, pointer_stat
   for (; input.escapes > 0; --input.escapes)
     if (!editing_text) keys.quit |= escape(panel, solver_running || still_running).quit;
   keys.quit |= std::exchange(input.quit_now, false);
-  if (io.WantCaptureKeyboard) return keys;
-  if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false)) {
+  for (; input.panel_toggles > 0; --input.panel_toggles) {
     panel.layout.visible = !panel.layout.visible;
     keys.save_layout = true;
   }
+  if (io.WantCaptureKeyboard) return keys;
   auto down = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
   const double speed = orbit.distance * 0.5 * dt;  // half the viewing distance per second
   orbit_fly(orbit, (down(GLFW_KEY_W) - down(GLFW_KEY_S)) * speed, (down(GLFW_KEY_D) - down(GLFW_KEY_A)) * speed,

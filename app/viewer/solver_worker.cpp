@@ -119,6 +119,11 @@ void solver_worker::wait_idle() const {
   went_idle_.wait(lock, [this] { return idle_; });
 }
 
+bool solver_worker::idle() const {
+  std::lock_guard lock(mutex_);
+  return idle_;
+}
+
 void solver_worker::handle(command& c) {
   using kind = command::kind;
   switch (c.what) {

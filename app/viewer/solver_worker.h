@@ -113,6 +113,8 @@ class solver_worker {
   // queued and nothing being worked on. For tests and the scripted window
   // run.
   void wait_idle() const;
+  // Whether it is idle now, without waiting.
+  bool idle() const;
 
  private:
   struct command;

@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -110,6 +111,9 @@ class viewer_app {
 
   // The frame loop, until the window closes; returns the exit code.
   int run();
+  // Whether work is under way that closing would wait for: a solver step,
+  // a still, a reference, a scene check.
+  bool working() const { return !worker_.idle() || still_.running() || errors_.status("").computing || checks_.busy(); }
 
  private:
   void take_published_work(const worker_view& view);
@@ -177,7 +181,8 @@ class viewer_app {
   int led_width_ = 0, led_height_ = 0;
   clock_type::time_point last_motion_ = clock_type::now();
 
-  error_tracker errors_;  // error against time: a path-traced reference of the camera on request
+  bool pause_asked_ = false;  // Pause sent, the worker still ending its step
+  error_tracker errors_;      // error against time: a path-traced reference of the camera on request
   bool reference_requested_ = false;
 
   scripted_run script_;
@@ -458,6 +463,8 @@ void viewer_app::lead_solver(const worker_view& view) {
 
 void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
   send_to_worker(act, panel_, worker_);  // a reload keeps the scene on the worker: no copy here
+  if (act.pause) pause_asked_ = true;
+  if (act.resume || act.step || act.restart || act.open_scene || act.apply_mesh) pause_asked_ = false;
   if (act.frame_scene) orbit_frame(orbit_, bounds(view), scene_camera_.fov_y_degrees);
   if (act.reset_camera) orbit_ = orbit_from_camera(scene_camera_);
   if (act.trace_still && view.source && !still_.running()) {
@@ -525,12 +532,22 @@ int viewer_app::run() {
   auto last_frame = clock_type::now();
   for (int frame = 1; code_ == exit_ok && !glfwWindowShouldClose(window_); ++frame) {
     glfwPollEvents();
+    deliver_input(window_, input_);
     const auto now = clock_type::now();
     const double dt = std::chrono::duration<double>(now - last_frame).count();
     frame_ms_ = 1000.0 * dt;
     last_frame = now;
 
-    const std::shared_ptr<const worker_view> view = worker_.latest();
+    std::shared_ptr<const worker_view> view = worker_.latest();
+    // A pause takes effect in the window at once: the worker ends the step
+    // under way (it cannot stop inside one) and starts no other, and the
+    // window shows it paused from the frame Space was pressed.
+    if (pause_asked_ && !view->running) pause_asked_ = false;  // the worker has paused
+    if (pause_asked_) {
+      auto paused = std::make_shared<worker_view>(*view);
+      paused->running = false;
+      view = std::move(paused);
+    }
     if (!view->mesh) frame = 0;  // scripted frames count from the first picture of the scene
     take_published_work(*view);
     take_still(frame);
@@ -582,12 +599,24 @@ int run_viewer(const scene& initial, const solver_settings& solver, const viewer
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;
-  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplGlfw_InitForOpenGL(window, false);  // the window's callbacks queue; deliver_input calls ImGui's
   ImGui_ImplOpenGL3_Init("#version 330 core");
   int code = exit_ok;
   {
     viewer_app app(window, input, initial, solver, options);
     code = app.run();
+    if (app.working()) {
+      // Quitting is immediate: a solver step on a large scene, a still or
+      // a reference can take seconds to reach a point where it can stop,
+      // and none of them has anything to save (files are written whole
+      // when asked for). The window goes at once and the process ends
+      // without waiting for them.
+      glfwHideWindow(window);
+      glfwPollEvents();
+      std::fprintf(stderr, "bounce: quit without waiting for the work under way\n");
+      std::fflush(nullptr);
+      std::_Exit(code);
+    }
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

@@ -9,23 +9,45 @@
 // glad first: GLFW must not pull in a GL header of its own.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <imgui.h>
 
 #include "image/image.h"
 
 namespace bounce {
 namespace {
 
-void on_scroll(GLFWwindow* window, double, double dy) {
-  static_cast<window_input*>(glfwGetWindowUserPointer(window))->scroll += dy;
+window_input& input_of(GLFWwindow* window) {
+  return *static_cast<window_input*>(glfwGetWindowUserPointer(window));
 }
 
-// Keys that act however ImGui is focused: Esc (the viewer decides what it
-// closes) and Ctrl+Q. ImGui chains its own callback to this one.
-void on_key(GLFWwindow* window, int key, int, int action, int mods) {
-  if (action != GLFW_PRESS) return;
-  auto* input = static_cast<window_input*>(glfwGetWindowUserPointer(window));
-  if (key == GLFW_KEY_ESCAPE) ++input->escapes;
-  if (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)) input->quit_now = true;
+// The callbacks only queue: deliver_input hands the events on in order.
+void on_scroll(GLFWwindow* window, double dx, double dy) {
+  input_event e;
+  e.what = input_event::kind::scroll;
+  e.dx = dx;
+  e.dy = dy;
+  input_of(window).queue.push_back(e);
+}
+
+void on_key(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  input_of(window).queue.push_back({input_event::kind::key, key, scancode, action, mods, 0, 0.0, 0.0});
+}
+
+void on_char(GLFWwindow* window, unsigned int codepoint) {
+  input_event e;
+  e.what = input_event::kind::character;
+  e.codepoint = codepoint;
+  input_of(window).queue.push_back(e);
+}
+
+void on_button(GLFWwindow* window, int button, int action, int mods) {
+  input_event e;
+  e.what = input_event::kind::button;
+  e.code = button;
+  e.action = action;
+  e.mods = mods;
+  input_of(window).queue.push_back(e);
 }
 
 void on_drop(GLFWwindow* window, int count, const char** paths) {
@@ -84,10 +106,48 @@ GLFWwindow* open_window(int width, int height, int msaa, window_input& input, st
     return nullptr;
   }
   glfwSetWindowUserPointer(window, &input);
-  glfwSetScrollCallback(window, on_scroll);  // before ImGui, which chains to them
+  // ImGui's backend is initialised without callbacks of its own: these
+  // queue, and deliver_input calls the backend's in order.
+  glfwSetScrollCallback(window, on_scroll);
   glfwSetKeyCallback(window, on_key);
+  glfwSetCharCallback(window, on_char);
+  glfwSetMouseButtonCallback(window, on_button);
   glfwSetDropCallback(window, on_drop);
+  glfwSetWindowFocusCallback(window, ImGui_ImplGlfw_WindowFocusCallback);
+  glfwSetCursorEnterCallback(window, ImGui_ImplGlfw_CursorEnterCallback);
   return window;
+}
+
+void deliver_input(GLFWwindow* window, window_input& input) {
+  const ImGuiIO& io = ImGui::GetIO();
+  std::vector<int> pressed_keys, pressed_buttons;  // pressed in this delivery
+  auto pressed = [](const std::vector<int>& v, int code) { return std::find(v.begin(), v.end(), code) != v.end(); };
+  while (!input.queue.empty()) {
+    const input_event e = input.queue.front();
+    if (e.what == input_event::kind::key) {
+      if (e.action == GLFW_RELEASE && pressed(pressed_keys, e.code)) break;  // next frame: a tap lasts a frame
+      ImGui_ImplGlfw_KeyCallback(window, e.code, e.scancode, e.action, e.mods);
+      if (e.action == GLFW_PRESS) {
+        pressed_keys.push_back(e.code);
+        // Keys that act however ImGui is focused: Esc (the viewer decides
+        // what it closes) and Ctrl+Q; Tab and F1 unless a text field has
+        // the keyboard.
+        if (e.code == GLFW_KEY_ESCAPE) ++input.escapes;
+        if (e.code == GLFW_KEY_Q && (e.mods & GLFW_MOD_CONTROL)) input.quit_now = true;
+        if ((e.code == GLFW_KEY_TAB || e.code == GLFW_KEY_F1) && !io.WantTextInput) ++input.panel_toggles;
+      }
+    } else if (e.what == input_event::kind::button) {
+      if (e.action == GLFW_RELEASE && pressed(pressed_buttons, e.code)) break;
+      ImGui_ImplGlfw_MouseButtonCallback(window, e.code, e.action, e.mods);
+      if (e.action == GLFW_PRESS) pressed_buttons.push_back(e.code);
+    } else if (e.what == input_event::kind::character) {
+      ImGui_ImplGlfw_CharCallback(window, e.codepoint);
+    } else {
+      ImGui_ImplGlfw_ScrollCallback(window, e.dx, e.dy);
+      input.scroll += e.dy;
+    }
+    input.queue.pop_front();
+  }
 }
 
 std::string window_title(const std::string& scene_source) {

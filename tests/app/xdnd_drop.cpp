@@ -27,6 +27,8 @@
 #include <string>
 #include <thread>
 
+#include "x_windows.h"
+
 namespace {
 
 using clock_type = std::chrono::steady_clock;
@@ -34,63 +36,14 @@ using clock_type = std::chrono::steady_clock;
 constexpr long xdnd_version = 5;  // the newest XDND version, as GLFW 3.3 speaks it
 
 struct atoms {
-  Atom aware, selection, enter, position, status, drop, finished, leave, action_copy, uri_list, net_wm_name,
-      utf8_string, timestamp_probe;
+  Atom aware, selection, enter, position, status, drop, finished, leave, action_copy, uri_list, timestamp_probe;
 };
 
 atoms intern_atoms(Display* display) {
   auto atom = [display](const char* name) { return XInternAtom(display, name, False); };
-  return {atom("XdndAware"),      atom("XdndSelection"), atom("XdndEnter"),    atom("XdndPosition"),
-          atom("XdndStatus"),     atom("XdndDrop"),      atom("XdndFinished"), atom("XdndLeave"),
-          atom("XdndActionCopy"), atom("text/uri-list"), atom("_NET_WM_NAME"), atom("UTF8_STRING"),
-          atom("XDND_DROP_TIME")};
-}
-
-// Windows can vanish while we walk the tree (a BadWindow then): such errors
-// are not ours to die of, so they are ignored and the walk goes on.
-int ignore_x_errors(Display*, XErrorEvent*) {
-  return 0;
-}
-
-// A window's title: _NET_WM_NAME (UTF-8, what GLFW and toolkits set) or
-// else WM_NAME.
-std::string window_name(Display* display, Window window, const atoms& a) {
-  std::string name;
-  Atom type = None;
-  int format = 0;
-  unsigned long count = 0, after = 0;
-  unsigned char* data = nullptr;
-  if (XGetWindowProperty(display, window, a.net_wm_name, 0, 1024, False, a.utf8_string, &type, &format, &count, &after,
-                         &data) == Success &&
-      data) {
-    if (type == a.utf8_string && format == 8) name.assign(reinterpret_cast<char*>(data), count);
-    XFree(data);
-  }
-  if (!name.empty()) return name;
-  char* wm_name = nullptr;
-  if (XFetchName(display, window, &wm_name) && wm_name) {
-    name = wm_name;
-    XFree(wm_name);
-  }
-  return name;
-}
-
-// The first window under `parent` (depth first) whose title contains
-// `needle`. Without a window manager (Xvfb) that is a child of the root;
-// with one, the named client window sits inside the manager's frame.
-Window find_window(Display* display, Window parent, const std::string& needle, const atoms& a) {
-  Window root = 0, up = 0, *children = nullptr;
-  unsigned int count = 0;
-  if (!XQueryTree(display, parent, &root, &up, &children, &count)) return None;
-  Window found = None;
-  for (unsigned int i = 0; i < count && found == None; ++i) {
-    if (window_name(display, children[i], a).find(needle) != std::string::npos)
-      found = children[i];
-    else
-      found = find_window(display, children[i], needle, a);
-  }
-  if (children) XFree(children);
-  return found;
+  return {atom("XdndAware"),      atom("XdndSelection"), atom("XdndEnter"),     atom("XdndPosition"),
+          atom("XdndStatus"),     atom("XdndDrop"),      atom("XdndFinished"),  atom("XdndLeave"),
+          atom("XdndActionCopy"), atom("text/uri-list"), atom("XDND_DROP_TIME")};
 }
 
 // The XDND version the target supports (its XdndAware property), or -1
@@ -252,14 +205,14 @@ int main(int argc, char** argv) {
   if (!display)
     return fail(std::string("cannot open the X display '") + (display_name ? display_name : "") +
                 "' (is DISPLAY set? run under xvfb-run)");
-  XSetErrorHandler(ignore_x_errors);
+  XSetErrorHandler(bounce::test_support::ignore_x_errors);
   const atoms a = intern_atoms(display);
   const Window root = DefaultRootWindow(display);
 
   // The target: the window that program is opening may not exist yet, so
   // look again until the deadline.
   Window target = None;
-  while ((target = find_window(display, root, needle, a)) == None) {
+  while ((target = bounce::test_support::find_window(display, root, needle)) == None) {
     if (clock_type::now() >= deadline)
       return fail("no window with '" + needle + "' in its title appeared within " + argv_timeout + " s");
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -270,7 +223,7 @@ int main(int argc, char** argv) {
   // lower of our two versions.
   const long aware = aware_version(display, target, a);
   if (aware < 0)
-    return fail("window " + hex_id(target) + " ('" + window_name(display, target, a) +
+    return fail("window " + hex_id(target) + " ('" + bounce::test_support::window_name(display, target) +
                 "') has no XdndAware property: it accepts no drops");
   const long version = std::min(aware, xdnd_version);
   if (version < 2) return fail("window " + hex_id(target) + " speaks XDND " + std::to_string(aware) + ", below 2");
