@@ -50,6 +50,10 @@ void add_view_options(CLI::App& command, view_options& options) {
   command.add_flag("--no-refine-at-rest{false}", window.refine_at_rest,
                    "keep the live Gouraud view while the camera rests (the panel's \"refine at rest\" off)");
   command.add_flag("--paused", window.start_paused, "mesh and show the scene but start the solver paused");
+  command
+      .add_option("--exposure", window.exposure,
+                  "a fixed exposure (displayed value = radiance x exposure); default: automatic, from the picture")
+      ->check(number_in(min_exposure, max_exposure));
   command.add_option("--msaa", window.msaa, "window antialiasing samples (default: 4 on a GPU, 0 on software GL)")
       ->check(CLI::Range(0, 16));
 }

@@ -628,9 +628,16 @@ void draw_false_colour_legend(gl::false_colour colours, const worker_view& view)
 void draw_display_section(panel_state& state, const worker_view& view, panel_actions& act) {
   if (!ImGui::CollapsingHeader("Display")) return;
   gl::display_settings& display = state.display;
+  ImGui::Checkbox("auto##exposure", &state.auto_exposure);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "set the exposure from the picture: its brightest 5%% just below white; moving the slider fixes it");
+  ImGui::SameLine();
   float stops = float(std::log2(display.exposure));
-  ImGui::SliderFloat("exposure (stops)", &stops, -8.0f, 8.0f, "%.1f");
-  display.exposure = std::exp2(double(stops));
+  if (ImGui::SliderFloat("exposure (stops)", &stops, -16.0f, 16.0f, "%.1f")) {
+    display.exposure = std::exp2(double(stops));
+    state.auto_exposure = false;  // a value the user sets stays
+  }
   int curve = int(display.curve) == 1 ? 1 : 0;
   ImGui::Combo("tone curve", &curve, "sRGB\0filmic\0");
   display.curve = curve ? gl::tone_curve::filmic : gl::tone_curve::srgb;

@@ -59,6 +59,7 @@ struct panel_state {
   std::vector<std::string> recent_scenes;  // most recent first
   solver_settings solver;                  // mesh density, method and its settings, criterion
   gl::display_settings display;
+  bool auto_exposure = true;  // the window sets display.exposure from the picture (exposure_control.h)
   bool screenshot_with_panel = false;
   std::string screenshot_path;  // empty: a new name for each screenshot (dated_file_name)
   still_settings still;

@@ -29,6 +29,7 @@
 #include "scene/warning_groups.h"
 #include "trace/back_faces.h"
 #include "viewer/error_tracker.h"
+#include "viewer/exposure_control.h"
 #include "viewer/input.h"
 #include "viewer/panel.h"
 #include "viewer/picture_quad.h"
@@ -181,8 +182,9 @@ class viewer_app {
   int led_width_ = 0, led_height_ = 0;
   clock_type::time_point last_motion_ = clock_type::now();
 
-  bool pause_asked_ = false;  // Pause sent, the worker still ending its step
-  error_tracker errors_;      // error against time: a path-traced reference of the camera on request
+  bool pause_asked_ = false;   // Pause sent, the worker still ending its step
+  exposure_control exposure_;  // automatic exposure, when the panel has it on
+  error_tracker errors_;       // error against time: a path-traced reference of the camera on request
   bool reference_requested_ = false;
 
   scripted_run script_;
@@ -212,6 +214,10 @@ viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& ini
   worker_.load(initial, solver, options.load_warnings);
   if (options.start_paused) worker_.pause();
   panel_.layout = read_panel_layout();
+  if (options.exposure > 0.0) {
+    panel_.display.exposure = options.exposure;
+    panel_.auto_exposure = false;
+  }
   panel_.scene_path = initial.source;
   panel_.solver = solver;
   panel_.refine_at_rest = options.refine_at_rest;
@@ -255,6 +261,7 @@ void viewer_app::take_published_work(const worker_view& view) {
       panel_.show_still = false;
     }
     shown_source_ = view.source;
+    exposure_.start();  // a new scene: its own exposure at once
     if (view.source) {
       back_faces_ = -1.0;
       checks_.post([this, source = view.source] {
@@ -355,6 +362,10 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   glViewport(0, 0, width_, height_);  // the view: the window left of the panel
   if (view.mesh) renderer_.draw(view_projection, glm::vec3(cam.eye), display);
   if (refined_passes_ > 0) refined_.draw();
+  // Automatic exposure from the picture as drawn, once it is lit (the
+  // headlit preview follows the exposure, so it cannot set it).
+  if (panel_.auto_exposure && lit && !display.wireframe && display.colours == gl::false_colour::none)
+    exposure_.update(width_, height_, panel_.display);
 
   if (script_.wants_still(frame, view.mesh != nullptr)) keys.trace_still = true;
   // A scripted end waits for passes of the solution as it ended: passes of

@@ -17,6 +17,7 @@ struct viewer_options {
   bool exit_after = false;      // leave after the scripted frames
   bool start_paused = false;    // mesh and show the scene, shoot nothing until Start
   int msaa = -1;                // window samples; -1: 4 on GPUs, 0 on software GL (llvmpipe)
+  double exposure = 0.0;        // > 0: this exposure, fixed; 0: automatic (exposure_control.h)
   std::string still_path;       // scripted run: trace a still (scene camera's size) halfway, wait, save it as PNG
   bool error_plot = false;      // path trace a reference at the start and plot the solution's error against it
   std::string screenshots_dir;  // scripted run: the view (no panel) every `screenshot_every` frames, as PNGs

@@ -14,6 +14,17 @@ namespace bounce {
 // sRGB transfer function of a linear value in [0, 1].
 double linear_to_srgb(double linear);
 
+// The filmic curve of the shaders (gouraud.frag): Narkowicz's fit of ACES,
+// clamped to [0, 1].
+double filmic_curve(double x);
+
+// The display encoding undone (exposure aside): the linear value that the
+// sRGB curve, or with `filmic` the filmic curve then sRGB, shows as
+// `encoded` in [0, 1]. At the top (a clipped pixel) it is the least value
+// that shows so. The window's automatic exposure reads its picture back
+// this way.
+double display_to_linear(double encoded, bool filmic);
+
 // Radiance -> 8-bit sRGB: multiply by exposure, clamp to [0, 1], encode.
 glm::u8vec3 to_srgb8(const rgb& radiance, double exposure);
 

@@ -40,5 +40,19 @@ TEST(Tonemap, AutoExposureMapsThe95thPercentileTo08) {
   EXPECT_NEAR(luminance(rgb(1.0)), 1.0, 1e-12);
 }
 
+// The display encoding undone: every value the curves show below their top
+// reads back to the linear value that made it.
+TEST(Tonemap, DisplayEncodingReadsBack) {
+  for (const double x : {0.0, 0.001, 0.01, 0.18, 0.5, 0.9}) {
+    EXPECT_NEAR(display_to_linear(linear_to_srgb(x), false), x, 1e-9 + 1e-9 * x);
+    EXPECT_NEAR(display_to_linear(linear_to_srgb(filmic_curve(x)), true), x, 1e-9 + 1e-9 * x);
+  }
+  for (const double x : {2.0, 5.0}) EXPECT_NEAR(display_to_linear(linear_to_srgb(filmic_curve(x)), true), x, 1e-6 * x);
+  // At the top, the least value that shows so.
+  EXPECT_DOUBLE_EQ(display_to_linear(1.0, false), 1.0);
+  EXPECT_NEAR(filmic_curve(display_to_linear(1.0, true)), 1.0, 1e-12);
+  EXPECT_NEAR(filmic_curve(0.18), 0.2668, 1e-4);  // Narkowicz's fit: mid grey shows at 0.27
+}
+
 }  // namespace
 }  // namespace bounce
