@@ -267,6 +267,9 @@ void main() {
     vertex_radiance = emitted + (vertex_radiance - emitted) * checker(uv) * inverse_mean;
   }
 #endif
+  // The back of a one-sided surface has no light of its own: black, as the
+  // still shows it (the radiosity drawn is its front's).
+  if (!gl_FrontFacing) vertex_radiance = vec3(0.0);
 #ifdef SPECULAR
   vertex_radiance += specular_radiance(world_position, world_normal);
 #endif

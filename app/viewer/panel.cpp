@@ -1,6 +1,7 @@
 #include "viewer/panel.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,7 +17,8 @@ namespace bounce {
 
 const std::vector<std::pair<std::string, std::string>>& shortcuts() {
   static const std::vector<std::pair<std::string, std::string>> keys = {
-      {"left drag", "orbit"},
+      {"left drag", "orbit about the point under the cursor"},
+      {"1 / 3 / 7 (keypad or row)", "front / right / top view; with Ctrl the opposite"},
       {"right drag / shift + left drag", "pan"},
       {"wheel", "zoom"},
       {"W A S D, Q E", "fly forward, left, back, right, down, up"},
@@ -395,6 +397,22 @@ void draw_import_report(panel_state& state, const worker_view& view) {
   if (!open) return;
   state.warnings_read = view.warnings;
   for (const warning_group& g : state.warning_groups) ImGui::BulletText("%s", describe(g).c_str());
+}
+
+// What the worker is doing before it can solve (loading, meshing,
+// preparing the solver), with its running time: over the view's top left,
+// where it is seen whether the panel is shown or not, so a large scene
+// shows life from its first second.
+void draw_stage(const worker_view& view) {
+  if (view.stage.empty()) return;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - view.stage_started).count();
+  char text[600];
+  std::snprintf(text, sizeof text, "%s... %.1f s", view.stage.c_str(), seconds);
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const ImVec2 at(12.0f, 12.0f), size = ImGui::CalcTextSize(text);
+  draw->AddRectFilled(ImVec2(at.x - 6.0f, at.y - 4.0f), ImVec2(at.x + size.x + 6.0f, at.y + size.y + 4.0f),
+                      IM_COL32(0, 0, 0, 160), 4.0f);
+  draw->AddText(at, IM_COL32(255, 255, 255, 255), text);
 }
 
 // A new solver restarts at once (the mesh is kept when it meshes the
@@ -815,6 +833,7 @@ panel_actions draw_panel(panel_state& state, const worker_view& view, double fra
     end_panel_window(state);
     draw_panel_edge(state, act);
   }
+  draw_stage(view);
   draw_still_window(state, still, act);
   draw_help_window(state);
   draw_quit_popup(state, still, act);

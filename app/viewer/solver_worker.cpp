@@ -130,8 +130,10 @@ void solver_worker::handle(command& c) {
     case kind::load_file: {
       load_report report;
       scene s;
+      enter_stage("loading " + c.path);
       if (!load_scene(c.path, s, report)) {
         error_ = report.error;  // the previous scene stays
+        enter_stage("");
         return;
       }
       if (c.settings.view) c.settings.view = s.view;  // a scene opened is first led by its own camera
@@ -154,8 +156,10 @@ void solver_worker::handle(command& c) {
         if (c.what == kind::reload) solver_.reset();
         solve_setup fresh;
         std::string error;
+        enter_stage("meshing " + s->source);
         if (!mesh_for_solve(*s, c.settings, fresh, error)) {
           error_ = s->source + ": " + error;
+          enter_stage("");
           if (!solver_ && mesh_) {  // the previous run starts again
             solver_ = make_solver_for(*scene_, *mesh_, settings_);
             ++run_;
@@ -171,7 +175,9 @@ void solver_worker::handle(command& c) {
       scene_ = s;
       mesh_ = mesh;
       settings_ = c.settings;
+      enter_stage("preparing the solver");
       solver_ = make_solver_for(*scene_, *mesh_, c.settings);
+      stage_.clear();  // published with the new run below
       criterion_ = c.settings.stop;
       if (!same_mesh) ++mesh_version_;
       ++run_;
@@ -214,6 +220,12 @@ void solver_worker::handle(command& c) {
   }
 }
 
+void solver_worker::enter_stage(std::string what) {
+  stage_ = std::move(what);
+  stage_started_ = std::chrono::steady_clock::now();
+  publish();
+}
+
 void solver_worker::publish() {
   auto v = std::make_shared<worker_view>();
   v->mesh_version = mesh_version_;
@@ -237,6 +249,8 @@ void solver_worker::publish() {
   v->history = history_;
   unpublished_ = false;
   v->error = error_;
+  v->stage = stage_;
+  v->stage_started = stage_started_;
   if (solver_) {
     v->converged = exhausted_ || stop_reached(*solver_, criterion_);
     v->running = !paused_ && !v->converged;

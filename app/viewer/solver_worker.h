@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -74,6 +75,11 @@ struct worker_view {
   std::string error;  // last failure (bad scene, mesh too large); the previous scene stays
   // What loading `source` warned of, one by one (warning_groups.h groups them).
   std::shared_ptr<const std::vector<std::string>> warnings;
+  // What the worker does before it can solve, and since when: "loading
+  // room.obj", "meshing room.obj", "preparing the solver"; empty while it
+  // solves or waits. The window shows it with a running time.
+  std::string stage;
+  std::chrono::steady_clock::time_point stage_started{};
 };
 
 class solver_worker {
@@ -123,6 +129,8 @@ class solver_worker {
   void run();
   void publish();
   void handle(command& c);
+  // Names what the worker starts doing now and publishes it (empty: done).
+  void enter_stage(std::string what);
 
   std::thread thread_;
   mutable std::mutex mutex_;
@@ -150,6 +158,8 @@ class solver_worker {
   bool unpublished_ = false;  // steps made since the last publish
   mutable std::atomic<bool> wanted_{true};
   std::string error_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point stage_started_{};
 
   std::shared_ptr<const worker_view> view_;
   std::shared_ptr<const patch_mesh> arrays_mesh_;  // the mesh mesh_arrays_ were built from

@@ -28,6 +28,7 @@
 #include "scene/scene_io.h"
 #include "scene/warning_groups.h"
 #include "trace/back_faces.h"
+#include "trace/ray_scene.h"
 #include "viewer/error_tracker.h"
 #include "viewer/exposure_control.h"
 #include "viewer/input.h"
@@ -194,7 +195,15 @@ class viewer_app {
   // The share of the scene camera's view that is back faces, checked off
   // the UI thread for each scene opened (-1: not known yet).
   std::atomic<double> back_faces_{-1.0};
-  background_worker checks_;  // last: destroyed first, so no check outlives what it writes
+  // The shown scene for rays, built off the UI thread with that check: the
+  // orbit turns about the point under the cursor and stays out of walls.
+  struct scene_rays {
+    explicit scene_rays(std::shared_ptr<const scene> s) : source(std::move(s)), rays(*source) {}
+    std::shared_ptr<const scene> source;  // the rays refer to it
+    ray_scene rays;
+  };
+  std::shared_ptr<const scene_rays> picking_;  // atomic_load / atomic_store: the checks' thread writes it
+  background_worker checks_;                   // last: destroyed first, so no check outlives what it writes
 };
 
 viewer_app::viewer_app(GLFWwindow* window, window_input& input, const scene& initial, const solver_settings& solver,
@@ -264,8 +273,11 @@ void viewer_app::take_published_work(const worker_view& view) {
     exposure_.start();  // a new scene: its own exposure at once
     if (view.source) {
       back_faces_ = -1.0;
+      std::atomic_store(&picking_, std::shared_ptr<const scene_rays>());
       checks_.post([this, source = view.source] {
-        back_faces_ = back_face_fraction(*source, source->view, ray_scene(*source));
+        auto rays = std::make_shared<const scene_rays>(source);
+        back_faces_ = back_face_fraction(*source, source->view, rays->rays);
+        std::atomic_store(&picking_, std::shared_ptr<const scene_rays>(std::move(rays)));
       });
       glfwSetWindowTitle(window_, window_title(view.source->source).c_str());
       // A scene opened in the window says its warnings on the terminal too,
@@ -565,16 +577,25 @@ int viewer_app::run() {
     timing_.frame(frame, frame_ms_);
 
     // Input: ImGui first; the view gets what the panel does not want.
-    panel_actions keys = handle_input(window_, input_, pointer_, orbit_, scene_camera_.fov_y_degrees, view->running,
-                                      still_.running(), dt, panel_);
+    int window_width = 0, window_height = 0;
+    glfwGetWindowSize(window_, &window_width, &window_height);
+    const std::shared_ptr<const scene_rays> picking = std::atomic_load(&picking_);
+    view_frame frame_of_view;
+    frame_of_view.base = scene_camera_;
+    frame_of_view.width =
+        std::max(0, window_width - int(std::lround(docked_width(panel_.layout, float(window_width)))));
+    frame_of_view.height = window_height;
+    const bounds3& box = bounds(*view);
+    frame_of_view.scene_size = glm::length(box.max - box.min);
+    frame_of_view.scene = picking && picking->source == view->source ? &picking->rays : nullptr;
+    panel_actions keys =
+        handle_input(window_, input_, pointer_, orbit_, frame_of_view, view->running, still_.running(), dt, panel_);
     if (!input_.dropped.empty()) {  // a file dropped on the window opens like the panel's Open
       panel_.scene_path = input_.dropped.back();
       input_.dropped.clear();
       keys.open_scene = true;
     }
     glfwGetFramebufferSize(window_, &framebuffer_width_, &height_);
-    int window_width = 0, window_height = 0;
-    glfwGetWindowSize(window_, &window_width, &window_height);
     const double pixels_per_point = window_width > 0 ? double(framebuffer_width_) / window_width : 1.0;
     width_ = std::max(
         0, framebuffer_width_ - int(std::lround(docked_width(panel_.layout, float(window_width)) * pixels_per_point)));

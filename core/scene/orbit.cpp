@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/quaternion.hpp>
+
 namespace bounce {
 namespace {
 
@@ -38,6 +40,49 @@ void orbit_rotate(orbit_state& o, double dx, double dy) {
   const double per_pixel = 0.3 * 3.14159265358979323846 / 180.0;
   o.yaw -= dx * per_pixel;
   o.pitch = std::clamp(o.pitch + dy * per_pixel, -max_pitch, max_pitch);
+}
+
+void orbit_rotate_about(orbit_state& o, const vec3& pivot, double dx, double dy) {
+  orbit_state turned = o;
+  orbit_rotate(turned, dx, dy);
+  // The rotation that takes the old view direction to the new one: the
+  // pitch about the camera's right axis, then the yaw about +y.
+  // (A turn by a about right = y x back lowers the pitch by a; the pitch
+  // stays under 89 degrees, so `right` is defined.)
+  const vec3 right = glm::normalize(glm::cross(vec3(0, 1, 0), backwards(o)));
+  const glm::dquat turn =
+      glm::angleAxis(turned.yaw - o.yaw, vec3(0, 1, 0)) * glm::angleAxis(o.pitch - turned.pitch, right);
+  turned.target = pivot + turn * (o.target - pivot);
+  o = turned;
+}
+
+void orbit_axis_view(orbit_state& o, axis_view view, double front_yaw) {
+  const double quarter = 0.5 * 3.14159265358979323846;
+  switch (view) {
+    case axis_view::front:
+      o.yaw = front_yaw, o.pitch = 0.0;
+      break;
+    case axis_view::back:
+      o.yaw = front_yaw + 2.0 * quarter, o.pitch = 0.0;
+      break;
+    case axis_view::right:
+      o.yaw = front_yaw + quarter, o.pitch = 0.0;
+      break;
+    case axis_view::left:
+      o.yaw = front_yaw - quarter, o.pitch = 0.0;
+      break;
+    case axis_view::top:
+      o.yaw = front_yaw, o.pitch = max_pitch;
+      break;
+    case axis_view::bottom:
+      o.yaw = front_yaw, o.pitch = -max_pitch;
+      break;
+  }
+}
+
+double front_yaw_of(const camera& c) {
+  const double quarter = 0.5 * 3.14159265358979323846;
+  return quarter * std::round(orbit_from_camera(c).yaw / quarter);
 }
 
 void orbit_pan(orbit_state& o, double dx, double dy, double height, double fov_y_degrees) {

@@ -22,6 +22,22 @@ camera camera_from_orbit(const orbit_state& o, const camera& base);
 // Mouse drag by (dx, dy) pixels: 0.3 degrees per pixel; pitch stays within
 // +-89 degrees so the view never flips.
 void orbit_rotate(orbit_state& o, double dx, double dy);
+// The same drag turning the camera about `pivot` (the point under the
+// cursor when the drag began) instead of the target: the eye and the
+// target turn about it together, so the pivot stays where it is on the
+// screen while the view turns (Blender's orbit about the point under the
+// cursor). The pitch stays within +-89 degrees.
+void orbit_rotate_about(orbit_state& o, const vec3& pivot, double dx, double dy);
+
+// The axis views of the numeric keypad (Blender's 1, 3, 7 and with Ctrl
+// their opposites), about the same target and at the same distance.
+// `front_yaw` is the yaw that counts as the front (the scene camera's,
+// squared to the nearest axis by front_yaw_of).
+enum class axis_view { front, back, right, left, top, bottom };
+void orbit_axis_view(orbit_state& o, axis_view view, double front_yaw);
+// A camera's yaw squared to the nearest multiple of 90 degrees.
+double front_yaw_of(const camera& c);
+
 // Moves the target in the view plane so the point under the cursor follows
 // it: (dx, dy) pixels in a viewport `height` pixels high.
 void orbit_pan(orbit_state& o, double dx, double dy, double height, double fov_y_degrees);

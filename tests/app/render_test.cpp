@@ -179,6 +179,32 @@ TEST(HeadlessImages, LightInOrUnderTheCeilingPlaneShowsItsRadiance) {
   }
 }
 
+// The back of a one-sided surface is black in the view, as in the still:
+// a lit floor seen from below. Before, the view drew it with its front's
+// light, so the picture changed when the camera came to rest.
+TEST(HeadlessImages, ABackFaceIsBlackAsInTheStill) {
+  scratch_dir dir;
+  const std::string scene = dir.write("below.json", R"({
+  "camera": {"eye": [1, -2, 1.2], "target": [1, 0, 1], "up": [0, 0, 1], "fov": 40, "size": [64, 64]},
+  "materials": {"floor": {"rho": [0.6, 0.6, 0.6]}, "lamp": {"ke": [4, 4, 4]}},
+  "surfaces": [
+    {"name": "floor", "polygon": [[0, 0, 0], [0, 0, 2], [2, 0, 2], [2, 0, 0]], "material": "floor"},
+    {"name": "lamp", "polygon": [[0.7, 0.5, 0.7], [1.3, 0.5, 0.7], [1.3, 0.5, 1.3], [0.7, 0.5, 1.3]], "material": "lamp"}
+  ]
+})");
+  ASSERT_EQ(run("render " + scene + " --max-edge 0.25 --out " + dir.path("view.pfm")), 0);
+  ASSERT_EQ(run("trace " + scene + " --max-edge 0.25 --spp 4 --out " + dir.path("still.pfm")), 0);
+  image view, still;
+  std::string error;
+  ASSERT_TRUE(read_pfm(dir.path("view.pfm"), view, error)) << error;
+  ASSERT_TRUE(read_pfm(dir.path("still.pfm"), still, error)) << error;
+  double view_sum = 0.0, still_sum = 0.0;
+  for (const float v : view.pixels) view_sum += v;
+  for (const float v : still.pixels) still_sum += v;
+  EXPECT_EQ(still_sum, 0.0);  // the floor's back fills the view: black
+  EXPECT_EQ(view_sum, 0.0);
+}
+
 TEST(HeadlessImages, NoNegativeOrWildPixelsAtAnySize) {
   // Radiosities are >= 0, and so is every convex combination of them: the
   // Gouraud view interpolates at the centroid (no extrapolation past a

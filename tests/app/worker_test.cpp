@@ -287,6 +287,27 @@ TEST(ErrorTracker, MeasuresPublishedSolutionsAgainstAPathTracedReference) {
   EXPECT_FALSE(tracker.status("another setting").last.has_value());
 }
 
+// Before it solves, the worker says what it is doing (loading, meshing,
+// preparing the solver), so the window can show life on a large scene;
+// once it solves, it says nothing.
+TEST(SolverWorker, SaysWhatItDoesBeforeItSolves) {
+  solver_worker worker;
+  worker.load_file("generated:interior-10k", coarse(0.5));
+  std::vector<std::string> seen;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto view = worker.latest();
+    if (!view->stage.empty() && (seen.empty() || seen.back() != view->stage)) seen.push_back(view->stage);
+    if (view->mesh && view->stage.empty()) break;
+  }
+  worker.wait_idle();
+  std::string all;
+  for (const std::string& s : seen) all += s + "; ";
+  EXPECT_NE(all.find("meshing generated:interior-10k"), std::string::npos) << all;
+  EXPECT_TRUE(worker.latest()->stage.empty());
+  EXPECT_TRUE(worker.latest()->mesh);
+}
+
 // A reference being traced says so, and Cancel stops it: nothing is
 // measured, and the panel is told it was cancelled.
 TEST(ErrorTracker, AReferenceSaysItIsBeingTracedAndCanBeCancelled) {
