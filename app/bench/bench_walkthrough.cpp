@@ -74,7 +74,7 @@ bool walk_reference(const std::string& out_dir, const scene& s, const ray_scene&
   return cache_reference(path, out);
 }
 
-std::string percent(double v) {
+std::string percent_to_a_tenth(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f%%", 100.0 * v);
   return b;
@@ -199,16 +199,16 @@ int run_walkthrough_bench(const bench_options& options) {
           fixed(100.0 * r.residual, 3) + "%" + (r.converged ? "" : " (stopped by its time limit)") + ".\n\n" +
           "| | total time | per view | mean error | views |\n|---|---:|---:|---:|---:|\n" +
           "| radiosity: one solve, every view drawn | " + fixed(radiosity_total, 1) + " s (solve " +
-          fixed(r.solve_seconds, 1) + " s) | " + fixed(drawn / n, 2) + " s | " + percent(radiosity_sum / n) + " | " +
+          fixed(r.solve_seconds, 1) + " s) | " + fixed(drawn / n, 2) + " s | " + percent_to_a_tenth(radiosity_sum / n) + " | " +
           std::to_string(r.views.size()) + " |\n" + "| path tracer: each view to the same error | " +
-          fixed(path_total, 1) + " s | " + fixed(traced / n, 2) + " s | " + percent(path_sum / n) + " | " +
+          fixed(path_total, 1) + " s | " + fixed(traced / n, 2) + " s | " + percent_to_a_tenth(path_sum / n) + " | " +
           std::to_string(reached) + " of " + std::to_string(r.views.size()) + " reached it |\n\n" +
           "| view | radiosity error | drawn in | path tracer error | spp | traced in "
           "|\n|---:|---:|---:|---:|---:|---:|\n";
     for (std::size_t i = 0; i < r.views.size(); ++i) {
       const walkthrough_view& v = r.views[i];
-      md += "| " + std::to_string(i) + " | " + percent(v.radiosity_error) + " | " + fixed(v.radiosity_seconds, 2) +
-            " s | " + percent(v.path_error) + (v.path_reached ? "" : " (not reached)") + " | " +
+      md += "| " + std::to_string(i) + " | " + percent_to_a_tenth(v.radiosity_error) + " | " + fixed(v.radiosity_seconds, 2) +
+            " s | " + percent_to_a_tenth(v.path_error) + (v.path_reached ? "" : " (not reached)") + " | " +
             std::to_string(v.path_spp) + " | " + fixed(v.path_seconds, 2) + " s |\n";
     }
     md += "\n";

@@ -10,7 +10,7 @@
 namespace bounce {
 namespace {
 
-camera cornell_camera() {
+camera scene_camera() {
   camera c;
   c.eye = vec3(278, 273, -800);
   c.target = vec3(278, 273, 0);
@@ -19,7 +19,7 @@ camera cornell_camera() {
 }
 
 TEST(Orbit, RoundTripsTheSceneCamera) {
-  const camera c = cornell_camera();
+  const camera c = scene_camera();
   const camera back = camera_from_orbit(orbit_from_camera(c), c);
   EXPECT_NEAR(glm::length(back.eye - c.eye), 0.0, 1e-9);
   EXPECT_NEAR(glm::length(back.target - c.target), 0.0, 1e-12);
@@ -30,23 +30,23 @@ TEST(Orbit, RoundTripsTheSceneCamera) {
 }
 
 TEST(Orbit, RotatingKeepsDistanceAndTargetAndNeverFlips) {
-  orbit_state o = orbit_from_camera(cornell_camera());
+  orbit_state o = orbit_from_camera(scene_camera());
   const double d = o.distance;
   orbit_rotate(o, 120, 40);
-  const camera c = camera_from_orbit(o, cornell_camera());
+  const camera c = camera_from_orbit(o, scene_camera());
   EXPECT_NEAR(glm::length(c.eye - c.target), d, 1e-9);
   EXPECT_EQ(c.target, vec3(278, 273, 0));
   orbit_rotate(o, 0, 100000);  // far past the pole
   EXPECT_LT(o.pitch, glm::radians(89.0) + 1e-12);
   // 300 pixels right = 90 degrees about +y.
-  orbit_state q = orbit_from_camera(cornell_camera());
+  orbit_state q = orbit_from_camera(scene_camera());
   orbit_rotate(q, 300, 0);
-  const camera r = camera_from_orbit(q, cornell_camera());
+  const camera r = camera_from_orbit(q, scene_camera());
   EXPECT_NEAR(r.eye.z, 0.0, 1e-9);
 }
 
 TEST(Orbit, PanFollowsTheCursorAndZoomScales) {
-  orbit_state o = orbit_from_camera(cornell_camera());
+  orbit_state o = orbit_from_camera(scene_camera());
   // Dragging a full viewport height moves the target by the visible height.
   orbit_pan(o, 0, 500, 500, 39.3);
   EXPECT_NEAR(o.target.y - 273, 2 * 800 * std::tan(glm::radians(39.3 / 2)), 1e-9);
@@ -57,7 +57,7 @@ TEST(Orbit, PanFollowsTheCursorAndZoomScales) {
 }
 
 TEST(Orbit, FlyAndFrame) {
-  orbit_state o = orbit_from_camera(cornell_camera());
+  orbit_state o = orbit_from_camera(scene_camera());
   orbit_fly(o, 100, 0, 0);  // forward is +z for this camera
   EXPECT_NEAR(o.target.z, 100, 1e-9);
   orbit_frame(o, bounds3{vec3(0.0), vec3(2.0)}, 60.0);
@@ -68,7 +68,7 @@ TEST(Orbit, FlyAndFrame) {
 // Orbiting about the point under the cursor: the point stays at its pixel
 // while the view turns as a plain orbit turns it.
 TEST(Orbit, TurningAboutAPointKeepsItOnItsPixel) {
-  camera base = cornell_camera();
+  camera base = scene_camera();
   base.width = 640;
   base.height = 480;
   const vec3 pivot(450, 120, 400);  // off the centre of the view
@@ -97,7 +97,7 @@ TEST(Orbit, TurningAboutAPointKeepsItOnItsPixel) {
 // The axis views look along the scene camera's axis, its opposite, from the
 // sides, and from above and below, about the same target.
 TEST(Orbit, AxisViewsSquareToTheSceneCamera) {
-  camera c = cornell_camera();
+  camera c = scene_camera();
   c.eye = vec3(300, 273, -800);  // a little off the axis: still the front
   const double front = front_yaw_of(c);
   orbit_state o = orbit_from_camera(c);
