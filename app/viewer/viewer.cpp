@@ -432,7 +432,7 @@ void viewer_app::refine_at_rest(const worker_view& view) {
   // A new solution restarts the passes once the solver has converged (a
   // solve still running would restart them at every step).
   const bool new_solution = view.converged && view.solution != refined_solution_;
-  if (moved || !refine_wanted || (new_solution && refiner_.active())) {
+  if (moved || !refine_wanted || (new_solution && refiner_.active()) || (view.running && refiner_.active())) {
     refiner_.stop();
     refined_passes_ = 0;
     refined_.clear();
@@ -444,8 +444,12 @@ void viewer_app::refine_at_rest(const worker_view& view) {
     refined_solution_.reset();
   }
   const double rested = std::chrono::duration<double>(now - last_motion_).count();
-  if (!refiner_.active() && refine_wanted && rested >= rest_seconds && view.source && view.mesh && view.solution &&
-      view.solution->stats.steps > 0 && width_ > 0 && height_ > 0) {
+  // Passes start only once the solver is at rest (converged or paused):
+  // passes of a solution still moving were noisier than the live view and
+  // were thrown away at every new solution anyway (a million triangles
+  // showed noise for more than 30 s).
+  if (!refiner_.active() && refine_wanted && rested >= rest_seconds && !view.running && view.source && view.mesh &&
+      view.solution && view.solution->stats.steps > 0 && width_ > 0 && height_ > 0) {
     camera cam = camera_from_orbit(orbit_, scene_camera_);
     cam.width = width_;
     cam.height = height_;
