@@ -53,6 +53,31 @@ std::shared_ptr<const worker_view> solved(solver_worker& worker, panel_state& pa
   return worker.latest();
 }
 
+// An ImGui context laid out headless (ImGui needs no renderer to lay
+// out), display `width` x `height`, gone with the object.
+struct headless_imgui {
+  headless_imgui(float width, float height) {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(width, height);
+    io.DeltaTime = 1.0f / 60.0f;
+    unsigned char* pixels = nullptr;
+    int w = 0, h = 0;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  }
+  ~headless_imgui() { ImGui::DestroyContext(); }
+  headless_imgui(const headless_imgui&) = delete;
+  headless_imgui& operator=(const headless_imgui&) = delete;
+};
+
+// One frame of the panel.
+void draw_frame(panel_state& panel, const worker_view& view) {
+  ImGui::NewFrame();
+  draw_panel(panel, view, 16.0);
+  ImGui::Render();
+}
+
 TEST(Panel, ChoosingTheOtherSolverRestartsWithIt) {
   solver_worker worker;
   panel_state panel;
@@ -175,14 +200,7 @@ TEST(Panel, LabelsFitThePanelForEitherSolver) {
   worker.load(test_support::default_cornell_box(), hierarchical(1e-4));
   worker.wait_idle();
   const auto view = worker.latest();
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;
-  io.DisplaySize = ImVec2(900, 900);
-  io.DeltaTime = 1.0f / 60.0f;
-  unsigned char* pixels = nullptr;
-  int w = 0, h = 0;
-  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  const headless_imgui imgui(900, 900);
   for (const solver_method method : {solver_method::hierarchical, solver_method::progressive}) {
     panel_state panel;
     panel.solver = hierarchical(1e-4);
@@ -191,9 +209,7 @@ TEST(Panel, LabelsFitThePanelForEitherSolver) {
     panel.still.integrator = 0;            // Whitted: its direct-light choice shown
     panel.still.window_size = false;       // the size fields shown
     for (int frame = 0; frame < 3; ++frame) {
-      ImGui::NewFrame();
-      draw_panel(panel, *view, 16.0);
-      ImGui::Render();
+      draw_frame(panel, *view);
       // Every section open, as if clicked: their headers' state by ID.
       ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
       ASSERT_NE(window, nullptr);
@@ -204,7 +220,6 @@ TEST(Panel, LabelsFitThePanelForEitherSolver) {
     const float room = window->Size.x - 2.0f * window->WindowPadding.x;
     EXPECT_LE(window->ContentSize.x, room + 0.5f) << name_of(method);
   }
-  ImGui::DestroyContext();
 }
 
 // Esc closes what is open first, asks before quitting while work runs, and
@@ -349,20 +364,9 @@ TEST(Panel, DocksAtTheRightEdgeAndHides) {
   worker.load(test_support::default_cornell_box(), hierarchical(1e-4));
   worker.wait_idle();
   const auto view = worker.latest();
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;
-  io.DisplaySize = ImVec2(1280, 900);
-  io.DeltaTime = 1.0f / 60.0f;
-  unsigned char* pixels = nullptr;
-  int w = 0, h = 0;
-  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  const headless_imgui imgui(1280, 900);
   panel_state panel;
-  for (int frame = 0; frame < 2; ++frame) {
-    ImGui::NewFrame();
-    draw_panel(panel, *view, 16.0);
-    ImGui::Render();
-  }
+  for (int frame = 0; frame < 2; ++frame) draw_frame(panel, *view);
   const ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
   ASSERT_NE(window, nullptr);
   EXPECT_FLOAT_EQ(window->Pos.x, 1280.0f - 400.0f);
@@ -370,11 +374,8 @@ TEST(Panel, DocksAtTheRightEdgeAndHides) {
   EXPECT_FLOAT_EQ(window->Size.x, 400.0f);
   EXPECT_FLOAT_EQ(window->Size.y, 900.0f);
   panel.layout.visible = false;
-  ImGui::NewFrame();
-  draw_panel(panel, *view, 16.0);
-  ImGui::Render();
+  draw_frame(panel, *view);
   EXPECT_FALSE(ImGui::FindWindowByName("Bounce")->Active);
-  ImGui::DestroyContext();
 }
 
 // The layout reads back as saved; a missing or broken file gives the
@@ -446,30 +447,17 @@ TEST(Panel, TheImportReportGroupsWarningsAndIsNewUntilRead) {
     warnings.push_back("m.obj:" + std::to_string(line) + ": degenerate face (zero area) dropped");
   warnings.push_back("m.mtl:2: 'Ka' is not used by Bounce; ignored");
   view.warnings = std::make_shared<const std::vector<std::string>>(warnings);
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;
-  io.DisplaySize = ImVec2(1280, 900);
-  io.DeltaTime = 1.0f / 60.0f;
-  unsigned char* pixels = nullptr;
-  int w = 0, h = 0;
-  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  const headless_imgui imgui(1280, 900);
   panel_state panel;
-  auto frame = [&] {
-    ImGui::NewFrame();
-    draw_panel(panel, view, 16.0);
-    ImGui::Render();
-  };
-  frame();
+  draw_frame(panel, view);
   ASSERT_EQ(panel.warning_groups.size(), 2u);
   EXPECT_EQ(panel.warning_groups[0].count, 300u);
   EXPECT_EQ(panel.warnings_read, nullptr);  // closed: unread
   ImGuiWindow* window = ImGui::FindWindowByName("Bounce");
   ASSERT_NE(window, nullptr);
   window->StateStorage.SetInt(window->GetID("###import"), 1);  // opened, as if clicked
-  frame();
+  draw_frame(panel, view);
   EXPECT_EQ(panel.warnings_read, view.warnings);
-  ImGui::DestroyContext();
 }
 
 }  // namespace

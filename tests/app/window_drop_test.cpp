@@ -41,6 +41,40 @@ std::string read_first_line(const std::string& path) {
   return line;
 }
 
+// The start of a shell script that runs `bounce view ARGS` in the
+// background on `server`, with the test's own configuration folder and
+// what it says in bounce.txt; its process id is $bounce.
+std::string script_starting_view(const x_server& server, const scratch_dir& dir, const std::string& args) {
+  std::string script = "export DISPLAY=" + server.display() + "\n";
+  script += "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
+  script += quoted(BOUNCE_EXE) + " view " + args + " >" + quoted(dir.path("bounce.txt")) + " 2>&1 &\n";
+  return script + "bounce=$!\n";
+}
+
+// `bounce view ARGS` with `key` tapped on its window (titled `title`) once
+// it shows: the view's exit status (-1: it did not exit), what it said, and
+// the tapping tool's status and words.
+struct tapped_view {
+  int status = -1;
+  std::string said, tap_status, tap_said, command;
+};
+tapped_view view_with_a_tap(const x_server& server, const scratch_dir& dir, const std::string& args,
+                            const std::string& title, const std::string& key, int timeout_seconds) {
+  std::string script = script_starting_view(server, dir, args);
+  script += quoted(X_KEY_TAP_EXE) + " " + quoted(title) + " " + key + " " + std::to_string(timeout_seconds) + " >" +
+            quoted(dir.path("tap.txt")) + " 2>&1\n";
+  script += "echo $? > " + quoted(dir.path("tap_status.txt")) + "\n";
+  script += "wait $bounce\n";  // the script's status: bounce's
+  tapped_view r;
+  r.command = "sh " + dir.write("run.sh", script);
+  const int status = std::system(r.command.c_str());
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.said = read_text(dir.path("bounce.txt"));
+  r.tap_status = read_first_line(dir.path("tap_status.txt"));
+  r.tap_said = read_text(dir.path("tap.txt"));
+  return r;
+}
+
 // Dropping second.json on the window showing first.json opens it: the title
 // becomes "second.json - Bounce" and it heads the recent list.
 TEST(Window, ADroppedFileOpens) {
@@ -55,11 +89,7 @@ TEST(Window, ADroppedFileOpens) {
   // on it (the tool waits up to 60 s for the window), then poll the window
   // tree (at most 60 s, and only while bounce runs: its window goes with
   // it) for the new title, and let the scripted run end (exiting 0).
-  std::string script = "export DISPLAY=" + server.display() + "\n";
-  script += "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
-  script += quoted(BOUNCE_EXE) + " view " + quoted(first) + " --max-edge 0.5 --frames 600 --exit >" +
-            quoted(dir.path("bounce.txt")) + " 2>&1 &\n";
-  script += "bounce=$!\n";
+  std::string script = script_starting_view(server, dir, quoted(first) + " --max-edge 0.5 --frames 600 --exit");
   script += quoted(XDND_DROP_EXE) + " 'first.json - Bounce' " + quoted(second) + " 60 >" +
             quoted(dir.path("drop.txt")) + " 2>&1\n";
   script += "echo $? > " + quoted(dir.path("drop_status.txt")) + "\n";
@@ -93,18 +123,10 @@ TEST(Window, AKeyTappedBetweenTwoFramesIsDelivered) {
   x_server server(dir.path("xvfb.log"));
   ASSERT_TRUE(server.ok()) << server.error();
   const std::string scene = dir.write("tap.json", small_scene);
-  std::string script = "export DISPLAY=" + server.display() + "\n";
-  script += "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
-  script += quoted(BOUNCE_EXE) + " view " + quoted(scene) + " --max-edge 0.5 --frames 300 --exit >" +
-            quoted(dir.path("bounce.txt")) + " 2>&1 &\n";
-  script += "bounce=$!\n";
-  script += quoted(X_KEY_TAP_EXE) + " 'tap.json - Bounce' Tab 60 >" + quoted(dir.path("tap.txt")) + " 2>&1\n";
-  script += "echo $? > " + quoted(dir.path("tap_status.txt")) + "\n";
-  script += "wait $bounce\n";
-  const std::string command = "sh " + dir.write("run.sh", script);
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << read_text(dir.path("bounce.txt"));
-  EXPECT_EQ(read_first_line(dir.path("tap_status.txt")), "0") << read_text(dir.path("tap.txt"));
+  const tapped_view run = view_with_a_tap(server, dir, quoted(scene) + " --max-edge 0.5 --frames 300 --exit",
+                                          "tap.json - Bounce", "Tab", 60);
+  ASSERT_EQ(run.status, 0) << run.command << "\n" << run.said;
+  EXPECT_EQ(run.tap_status, "0") << run.tap_said;
   const std::string layout = read_text(dir.path("config/bounce/panel.json"));
   EXPECT_NE(layout.find("\"visible\": false"), std::string::npos) << "panel.json: " << layout;
 }
@@ -118,19 +140,11 @@ TEST(Window, CtrlQQuitsWithoutWaitingForTheSolver) {
   scratch_dir dir;
   x_server server(dir.path("xvfb.log"));
   ASSERT_TRUE(server.ok()) << server.error();
-  std::string script = "export DISPLAY=" + server.display() + "\n";
-  script += "XDG_CONFIG_HOME=" + quoted(dir.path("config")) + " ASAN_OPTIONS=detect_leaks=0 ";
-  script += quoted(BOUNCE_EXE) + " view generated:interior-100k >" + quoted(dir.path("bounce.txt")) + " 2>&1 &\n";
-  script += "bounce=$!\n";
-  script += quoted(X_KEY_TAP_EXE) + " 'interior-100k - Bounce' ctrl+q 120 >" + quoted(dir.path("tap.txt")) + " 2>&1\n";
-  script += "echo $? > " + quoted(dir.path("tap_status.txt")) + "\n";
-  script += "wait $bounce\n";
-  const std::string command = "sh " + dir.write("run.sh", script);
-  const int status = std::system(command.c_str());
-  const std::string said = read_text(dir.path("bounce.txt"));
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << said;
-  EXPECT_EQ(read_first_line(dir.path("tap_status.txt")), "0") << read_text(dir.path("tap.txt"));
-  EXPECT_NE(said.find("quit without waiting for the work under way"), std::string::npos) << said;
+  const tapped_view run =
+      view_with_a_tap(server, dir, "generated:interior-100k", "interior-100k - Bounce", "ctrl+q", 120);
+  ASSERT_EQ(run.status, 0) << run.command << "\n" << run.said;
+  EXPECT_EQ(run.tap_status, "0") << run.tap_said;
+  EXPECT_NE(run.said.find("quit without waiting for the work under way"), std::string::npos) << run.said;
 }
 
 }  // namespace
