@@ -12,17 +12,10 @@ namespace {
 constexpr int largest_split = 8;
 
 // The PN triangle's control point next to p (towards q): p moved a third
-// of the way to q, then projected onto p's tangent plane.
+// of the way to q, then projected onto p's tangent plane (as in
+// curved_edge_point, which gives the triangle's edges).
 vec3 edge_control(const vec3& p, const vec3& np, const vec3& q) {
   return (2.0 * p + q - glm::dot(q - p, np) * np) / 3.0;
-}
-
-// The cubic Bezier of the PN triangle along the edge p -> q at t, which
-// depends on the two ends alone: neighbours that share the edge agree.
-vec3 edge_point(const vec3& p, const vec3& np, const vec3& q, const vec3& nq, double t) {
-  const vec3 bp = edge_control(p, np, q), bq = edge_control(q, nq, p);
-  const double s = 1.0 - t;
-  return s * s * s * p + 3.0 * s * s * t * bp + 3.0 * s * t * t * bq + t * t * t * q;
 }
 
 // The PN triangle at barycentrics (w, u, v) of corners (p0, p1, p2).
@@ -111,7 +104,7 @@ curved_display make_curved_display(const patch_mesh& mesh, const scene* source, 
     const auto key = std::make_tuple(i, j, step);
     if (const auto found = edge_points.find(key); found != edge_points.end()) return found->second;
     const double t = double(step) / k;
-    const vec3 p = edge_point(mesh.positions[i], mesh.normals[i], mesh.positions[j], mesh.normals[j], t);
+    const vec3 p = curved_edge_point(mesh.positions[i], mesh.normals[i], mesh.positions[j], mesh.normals[j], t);
     const vec3 n = (1.0 - t) * mesh.normals[i] + t * mesh.normals[j];
     const unsigned index = add_vertex(p, n, vertex_blend{i, j, j, float(1.0 - t), float(t), 0.0f});
     edge_points.emplace(key, index);

@@ -302,6 +302,7 @@ bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& ou
   patch_mesh pm;
   pm.scene_diagonal = std::max(glm::length(b.max - b.min), 1e-300);
   pm.max_edge = max_edge;
+  for (bool is_flat : flat) pm.curved_surfaces.push_back(!is_flat);
   const std::size_t nv = m.n_vertices();
   pm.positions.resize(nv);
   pm.normals.resize(nv);
@@ -445,7 +446,13 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   auto split = [&](om_mesh::EdgeHandle e) {
     om_mesh::HalfedgeHandle h = m.halfedge_handle(e, 0);
     om_mesh::VertexHandle a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
-    om_mesh::VertexHandle mid = m.add_vertex(0.5 * (m.point(a) + m.point(b)));
+    const int surface = mesh.vertex_surfaces[std::size_t(m.property(parent, a))];
+    const bool curved =
+        std::size_t(surface) < mesh.curved_surfaces.size() && mesh.curved_surfaces[std::size_t(surface)];
+    const vec3 pa = to_glm(m.point(a)), pb = to_glm(m.point(b));
+    const vec3 middle =
+        curved ? curved_edge_point(pa, m.property(normal, a), pb, m.property(normal, b), 0.5) : 0.5 * (pa + pb);
+    om_mesh::VertexHandle mid = m.add_vertex(to_om(middle));
     m.property(parent, mid) = m.property(parent, a);
     m.property(normal, mid) = glm::normalize(m.property(normal, a) + m.property(normal, b));
     m.property(uv, mid) = 0.5 * (m.property(uv, a) + m.property(uv, b));
@@ -500,6 +507,7 @@ bool refine_patch_mesh(patch_mesh& mesh, std::span<const int> marked, double min
   patch_mesh out;
   out.scene_diagonal = mesh.scene_diagonal;
   out.max_edge = mesh.max_edge;
+  out.curved_surfaces = std::move(mesh.curved_surfaces);
   out.nonmanifold_faces = mesh.nonmanifold_faces;
   out.uncut_overlaps = mesh.uncut_overlaps;
   out.contact_footprints = mesh.contact_footprints;

@@ -41,6 +41,11 @@ constexpr int estimate_cells_per_axis = 64;
 // Grid cells across a bounded quadric's smallest extent, whatever max_edge
 // says: fewer and a small sphere falls between the grid nodes.
 constexpr int min_quadric_cells = 4;
+// Quadric cells shrink for curvature at most this many times per axis, so
+// that a cone's apex (curvature without bound) cannot ask for a grid
+// without end.
+constexpr double max_curvature_shrink = 6.0;
+constexpr double radians_per_edge = curved_degrees_per_edge * std::numbers::pi / 180.0;
 
 // ---------------------------------------------------------------------------
 // Small helpers
@@ -338,7 +343,8 @@ struct sphere_grid {
 };
 
 sphere_grid sphere_resolution(const sphere& s, double max_edge) {
-  const int around = segments_for(2.0 * pi * s.radius, max_edge, 8, max_sphere_segments);
+  const int turn = int(std::ceil(2.0 * pi / radians_per_edge - 1e-9));
+  const int around = segments_for(2.0 * pi * s.radius, max_edge, turn, max_sphere_segments);
   return {around, std::max(4, (around + 1) / 2)};
 }
 
@@ -618,7 +624,7 @@ std::optional<std::pair<vec3, vec3>> quadric_surface_bounds(const quadric& q) {
 // surface small for max_edge (a small sphere in a big box) gets a grid over
 // its own bounds with at least min_quadric_cells across it, which would
 // otherwise fall between the grid nodes and vanish.
-quadric_grid quadric_grid_for(const quadric& q, double max_edge) {
+quadric_grid quadric_grid_by_size(const quadric& q, double max_edge) {
   const double cell = max_edge / 1.5;
   if (const auto bounds = quadric_surface_bounds(q)) {
     // The surface's own size, where it is bounded, before the box clips it:
@@ -637,6 +643,53 @@ quadric_grid quadric_grid_for(const quadric& q, double max_edge) {
     }
   }
   return quadric_resolution(q, cell);
+}
+
+// The largest |eigenvalue| of the quadric's symmetric matrix, by power
+// iteration (its norm: the Hessian is twice the matrix).
+double quadric_matrix_norm(const quadric& q) {
+  const glm::dmat3 m(q.a, q.d, q.f, q.d, q.b, q.e, q.f, q.e, q.c);
+  vec3 v = glm::normalize(vec3(1.0, 0.7, 0.4));
+  double norm = 0.0;
+  for (int i = 0; i < 64; ++i) {
+    const vec3 w = m * v;
+    norm = glm::length(w);
+    if (!(norm > 0.0)) return 0.0;
+    v = w / norm;
+  }
+  return norm;
+}
+
+// The smallest radius of curvature over the surface, bounded from below:
+// a normal curvature is t.H.t / |grad F| for a unit tangent t, at most
+// |H| / |grad F|, taken at the vertices of a march on a coarse grid.
+double smallest_curvature_radius(const quadric& q, const quadric_grid& g) {
+  const double hessian = 2.0 * quadric_matrix_norm(q);
+  if (!(hessian > 0.0)) return std::numeric_limits<double>::infinity();  // a plane
+  quadric_grid probe = g;  // fine enough to find a surface that a coarse grid misses
+  probe.cells = glm::ivec3(estimate_cells_per_axis / 2);
+  quadric_mesher mesher(q);
+  march_quadric(q, probe, mesher);
+  double radius = std::numeric_limits<double>::infinity();
+  for (const vec3& p : mesher.take().positions)
+    if (const double slope = glm::length(quadric_gradient_at(q, p)); slope > 0.0)
+      radius = std::min(radius, slope / hessian);
+  return radius;
+}
+
+// The grid for max_edge, made finer where the surface bends faster than
+// radians_per_edge per edge (an edge spans up to 1.5 cells), by at most
+// max_curvature_shrink per axis.
+quadric_grid quadric_grid_for(const quadric& q, double max_edge) {
+  const quadric_grid by_size = quadric_grid_by_size(q, max_edge);
+  const vec3 cells = (by_size.hi - by_size.lo) / vec3(by_size.cells);
+  const double cell = std::max({cells.x, cells.y, cells.z});
+  const double bent = smallest_curvature_radius(q, by_size) * radians_per_edge / 1.5;
+  if (!(bent < cell)) return by_size;
+  quadric bounded = q;
+  bounded.box_min = by_size.lo;
+  bounded.box_max = by_size.hi;
+  return quadric_resolution(bounded, std::max(bent, cell / max_curvature_shrink));
 }
 
 // Triangle count of the tessellation: exact on small grids; on big ones,
@@ -789,8 +842,38 @@ void append_uniform(std::vector<double>& out, double lo, double hi, int n, bool 
   if (with_end) out.push_back(hi);
 }
 
+// Segments along u and along v over the parameter rectangle [lo, hi] so
+// that the normal turns by at most radians_per_edge per segment, from its
+// turn between samples (a turn finer than the samples is missed).
+// `samples` steps per direction.
+template <class Sampler>
+std::pair<int, int> turn_segments(Sampler sample, const vec2& lo, const vec2& hi, const vec2& centre,
+                                  glm::ivec2 samples = glm::ivec2(8)) {
+  const int nu = samples.x, nv = samples.y;
+  std::vector<vec3> normals(std::size_t(nu + 1) * (nv + 1));  // row j along v, column i along u
+  const auto at = [&](int i, int j) -> vec3& { return normals[std::size_t(j) * (nu + 1) + i]; };
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i <= nu; ++i) {
+      const vec2 uv = lo + (hi - lo) * vec2(double(i) / nu, double(j) / nv);
+      at(i, j) = robust_normal(sample, sample(uv.x, uv.y), uv, centre);
+    }
+  const auto angle = [](const vec3& a, const vec3& b) {
+    return a == vec3(0.0) || b == vec3(0.0) ? 0.0 : std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+  };
+  // Segments are uniform in the parameter, so the steepest sampled step
+  // sets the count: the turn the whole range would have at its rate.
+  double along_u = 0.0, along_v = 0.0;
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i < nu; ++i) along_u = std::max(along_u, nu * angle(at(i, j), at(i + 1, j)));
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j < nv; ++j) along_v = std::max(along_v, nv * angle(at(i, j), at(i, j + 1)));
+  return {segments_for(along_u, radians_per_edge, 1, max_patch_segments),
+          segments_for(along_v, radians_per_edge, 1, max_patch_segments)};
+}
+
 // Segments per direction of one Bezier patch. |dP/du| <= 3 max |control
-// difference along u|, so steps of 1/n in u are at most max_edge long.
+// difference along u|, so steps of 1/n in u are at most max_edge long; and
+// more where the patch turns (turn_segments).
 std::pair<int, int> bezier_resolution(const std::array<vec3, 16>& c, double max_edge) {
   double along_u = 0.0, along_v = 0.0;
   for (int r = 0; r < 4; ++r)
@@ -798,12 +881,15 @@ std::pair<int, int> bezier_resolution(const std::array<vec3, 16>& c, double max_
       along_u = std::max(along_u, glm::distance(c[4 * r + k], c[4 * r + k + 1]));
       along_v = std::max(along_v, glm::distance(c[4 * k + r], c[4 * (k + 1) + r]));
     }
-  return {segments_for(3.0 * along_u, max_edge, 1, max_patch_segments),
-          segments_for(3.0 * along_v, max_edge, 1, max_patch_segments)};
+  const auto sample = [&](double u, double v) { return bezier_sample(c, u, v); };
+  const auto [turn_u, turn_v] = turn_segments(sample, vec2(0.0), vec2(1.0), vec2(0.5));
+  return {std::max(turn_u, segments_for(3.0 * along_u, max_edge, 1, max_patch_segments)),
+          std::max(turn_v, segments_for(3.0 * along_v, max_edge, 1, max_patch_segments))};
 }
 
 // Segments of one B-spline span (span index along u, or along v when
-// !along_u). On a uniform cubic span |dP/du| <= max |control difference|.
+// !along_u). On a uniform cubic span |dP/du| <= max |control difference|;
+// and more where the span turns (turn_segments, across the whole surface).
 int bspline_span_segments(const bspline_surface& b, int span, bool along_u, double max_edge) {
   const int lines = along_u ? b.rows : b.cols;
   double longest = 0.0;
@@ -813,7 +899,13 @@ int bspline_span_segments(const bspline_surface& b, int span, bool along_u, doub
       const int next = along_u ? here + 1 : here + b.cols;
       longest = std::max(longest, glm::distance(b.control[here], b.control[next]));
     }
-  return segments_for(longest, max_edge, 1, max_patch_segments);
+  const vec2 spans(b.cols - 3, b.rows - 3);
+  const vec2 lo = along_u ? vec2(span, 0.0) : vec2(0.0, span);
+  const vec2 hi = along_u ? vec2(span + 1.0, spans.y) : vec2(spans.x, span + 1.0);
+  const auto sample = [&](double u, double v) { return bspline_sample(b, u, v); };
+  const glm::ivec2 samples = along_u ? glm::ivec2(8, 8 * (b.rows - 3)) : glm::ivec2(8 * (b.cols - 3), 8);
+  const auto [turn_u, turn_v] = turn_segments(sample, lo, hi, 0.5 * spans, samples);
+  return std::max(along_u ? turn_u : turn_v, segments_for(longest, max_edge, 1, max_patch_segments));
 }
 
 // Parameter lines of the whole B-spline surface along one direction.

@@ -84,6 +84,15 @@ edge_census count_edges(const triangle_mesh& m) {
   return ::testing::AssertionSuccess();
 }
 
+// The largest turn of the normal along any edge, in degrees.
+double largest_turn_degrees(const triangle_mesh& m) {
+  double widest = 0.0;
+  for (const glm::ivec3& t : m.triangles)
+    for (int k = 0; k < 3; ++k)
+      widest = std::max(widest, std::acos(std::clamp(glm::dot(m.normals[t[k]], m.normals[t[(k + 1) % 3]]), -1.0, 1.0)));
+  return widest * 180.0 / pi;
+}
+
 // ---------------------------------------------------------------------------
 // Sphere
 
@@ -91,7 +100,8 @@ TEST(TessellateSphere, AreaConvergesToFourPiRSquared) {
   const sphere s{vec3(1.0, -2.0, 0.5), 1.7, 3};
   const double exact = 4.0 * pi * s.radius * s.radius;
   double previous = 1.0;
-  for (double fraction : {1.0, 0.5, 0.25, 0.125}) {
+  // Edges of r / 4 and finer: coarser ones meet the curvature bound below.
+  for (double fraction : {0.25, 0.125, 0.0625}) {
     const triangle_mesh m = tessellate(s, fraction * s.radius);
     const double error = std::abs(area(m) - exact) / exact;
     std::printf("  sphere max_edge %.3f r: %zu triangles, area error %.4f%%\n", fraction, m.triangles.size(),
@@ -100,6 +110,20 @@ TEST(TessellateSphere, AreaConvergesToFourPiRSquared) {
     previous = error;
   }
   EXPECT_LT(previous, 0.01);
+}
+
+// However large max_edge, the normal turns by at most about
+// curved_degrees_per_edge along an edge (a cell's diagonal: sqrt 2 times
+// that): the area is that of the bound.
+TEST(TessellateSphere, CoarseEdgesStopAtTheCurvatureBound) {
+  const sphere s{vec3(0.0), 2.0, 0};
+  const triangle_mesh bound = tessellate(s, s.radius);
+  for (double max_edge : {1.0, 10.0, 1e6}) {
+    const triangle_mesh m = tessellate(s, max_edge);
+    EXPECT_EQ(m.triangles.size(), bound.triangles.size()) << max_edge;
+    EXPECT_LE(largest_turn_degrees(m), std::sqrt(2.0) * curved_degrees_per_edge) << max_edge;
+  }
+  EXPECT_LT(std::abs(area(bound) - 4.0 * pi * 4.0) / (4.0 * pi * 4.0), 0.03);
 }
 
 TEST(TessellateSphere, ExactClosedOutwardMesh) {
@@ -159,8 +183,9 @@ TEST(TessellateQuadric, SphereAreaAndExactVertices) {
   const quadric q = unit_sphere_quadric();
   const double exact = 4.0 * pi;
   double previous = 1.0, finest = 1.0;
-  // 0.375 and 0.075 put grid nodes exactly on the sphere (at (+-1, 0, 0) etc).
-  for (double max_edge : {0.6, 0.375, 0.15, 0.075}) {
+  // Edges of 0.3 and finer: coarser ones meet the curvature bound (the
+  // next test). 0.075 puts grid nodes exactly on the sphere (at (+-1, 0, 0) etc).
+  for (double max_edge : {0.3, 0.15, 0.075}) {
     const triangle_mesh m = tessellate(q, max_edge);
     const double error = std::abs(area(m) - exact) / exact;
     std::printf("  quadric sphere max_edge %.3f: %zu triangles, area error %.4f%%\n", max_edge, m.triangles.size(),
@@ -280,6 +305,26 @@ TEST(TessellateQuadric, SmallSphereInAHugeBoxIsNotLost) {
   for (const vec3& p : m.positions) ASSERT_LE(std::abs(p.z), 1.0);
 }
 
+// A grid coarse for the surface is made finer where it bends, down to a
+// sixth of the cell per axis: a cone's apex (curvature without bound)
+// cannot ask for more.
+TEST(TessellateQuadric, CoarseGridsBendWithTheSurface) {
+  const quadric ball = unit_sphere_quadric();
+  const triangle_mesh m = tessellate(ball, 100.0);
+  std::printf("  unit sphere at max edge 100: %zu triangles, largest turn %.1f degrees\n", m.triangles.size(),
+              largest_turn_degrees(m));
+  EXPECT_LE(largest_turn_degrees(m), 1.6 * curved_degrees_per_edge);
+  EXPECT_LT(std::abs(area(m) - 4.0 * pi) / (4.0 * pi), 0.02);
+  quadric cone;  // x^2 + z^2 = y^2
+  cone.a = cone.c = 1.0;
+  cone.b = -1.0;
+  const triangle_mesh by_size = tessellate(cone, 2.0), bent = tessellate(cone, 100.0);
+  std::printf("  cone: %zu triangles at max edge 2, %zu at 100\n", by_size.triangles.size(), bent.triangles.size());
+  EXPECT_GT(bent.triangles.size(), 0u);
+  EXPECT_LE(bent.triangles.size(), 6u * 6u * by_size.triangles.size());
+  expect_well_formed(bent);
+}
+
 // ---------------------------------------------------------------------------
 // Bezier
 
@@ -359,6 +404,15 @@ bezier_surface dome() {
     b.patches.push_back(c);
   }
   return b;
+}
+
+// However large max_edge, a patch is cut where it turns: the dome's
+// quarter turns get edges of at most about curved_degrees_per_edge.
+TEST(TessellateBezier, CoarseEdgesBendWithThePatch) {
+  const triangle_mesh m = tessellate(dome(), 100.0);
+  std::printf("  dome at max edge 100: %zu triangles, largest turn %.1f degrees\n", m.triangles.size(),
+              largest_turn_degrees(m));
+  EXPECT_LE(largest_turn_degrees(m), 1.1 * std::sqrt(2.0) * curved_degrees_per_edge);
 }
 
 TEST(TessellateBezier, PatchesAndPoleAreWelded) {
@@ -452,6 +506,13 @@ TEST(TessellateBSpline, VerticesLieOnTheSurface) {
   const edge_census census = count_edges(m);
   EXPECT_TRUE(census.oriented);
   for (const auto& [edge, uses] : census.uses) ASSERT_LE(uses, 2);
+}
+
+TEST(TessellateBSpline, CoarseEdgesBendWithTheSurface) {
+  const triangle_mesh m = tessellate(wavy_bspline(), 100.0);
+  std::printf("  wavy B-spline at max edge 100: %zu triangles, largest turn %.1f degrees\n", m.triangles.size(),
+              largest_turn_degrees(m));
+  EXPECT_LE(largest_turn_degrees(m), 1.1 * std::sqrt(2.0) * curved_degrees_per_edge);
 }
 
 // ---------------------------------------------------------------------------
