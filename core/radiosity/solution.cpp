@@ -1,6 +1,7 @@
 #include "radiosity/solution.h"
 
 #include "base/check.h"
+#include "radiosity/transfer/buried_vertices.h"
 
 namespace bounce {
 
@@ -39,7 +40,8 @@ rgb mean_indirect_irradiance(const patch_mesh& mesh, const radiosity_snapshot& s
 
 std::shared_ptr<const radiosity_snapshot> make_snapshot(const patch_mesh& mesh, std::span<const rgb> radiosity,
                                                         std::span<const rgb> direct, std::span<const rgb> caustic,
-                                                        std::span<const rgb> remaining, const solver_stats& stats) {
+                                                        std::span<const rgb> remaining, const solver_stats& stats,
+                                                        const std::vector<bool>& buried) {
   BOUNCE_CHECK_EQ(radiosity.size(), mesh.vertex_count());
   BOUNCE_CHECK_EQ(direct.size(), mesh.vertex_count());
   BOUNCE_CHECK(caustic.empty() || caustic.size() == mesh.vertex_count());
@@ -51,6 +53,11 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const patch_mesh& mesh, 
   snap->radiosity.assign(radiosity.begin(), radiosity.end());
   snap->direct.assign(direct.begin(), direct.end());
   snap->caustic.assign(caustic.begin(), caustic.end());
+  if (buried.size() == mesh.vertex_count()) {
+    fill_buried_vertices(mesh, buried, snap->radiosity);
+    fill_buried_vertices(mesh, buried, snap->direct);
+    if (!snap->caustic.empty()) fill_buried_vertices(mesh, buried, snap->caustic);
+  }
   std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
   std::vector<int> count(mesh.vertex_count(), 0);
   for (std::size_t e = 0; e < mesh.element_count(); ++e)

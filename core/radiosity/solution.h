@@ -50,10 +50,13 @@ struct radiosity_snapshot {
 };
 
 // A snapshot of per-vertex arrays and the per-element remaining radiosity
-// (unshot, or residual) on `mesh`.
+// (unshot, or residual) on `mesh`. Vertices flagged in `buried` (one flag
+// per vertex, or empty) take their values from their neighbours outside
+// (transfer/buried_vertices.h).
 std::shared_ptr<const radiosity_snapshot> make_snapshot(const patch_mesh& mesh, std::span<const rgb> radiosity,
                                                         std::span<const rgb> direct, std::span<const rgb> caustic,
-                                                        std::span<const rgb> remaining, const solver_stats& stats);
+                                                        std::span<const rgb> remaining, const solver_stats& stats,
+                                                        const std::vector<bool>& buried = {});
 
 // Cohen 1988's ambient term, for display only: the remaining radiosity
 // (per element) spread evenly and reflected with the mean reflectance.

@@ -5,6 +5,7 @@
 #include "radiosity/hierarchical/publication.h"
 #include "radiosity/hierarchical/solver.h"
 #include "radiosity/hierarchical/view_importance.h"
+#include "radiosity/transfer/buried_vertices.h"
 #include "radiosity/transfer/mirror_images.h"
 
 namespace bounce {
@@ -117,6 +118,14 @@ bool step_solver(radiosity_solver& solver) {
                                              }},
                                   solver.state);
   if (!stepped) return false;
+  const form_factor_context& context = std::visit(
+      overloaded{
+          [](const std::unique_ptr<progressive_state>& p) -> const form_factor_context& { return p->form_factors; },
+          [](const std::unique_ptr<hierarchical_run>& run) -> const form_factor_context& {
+            return run->solver->context;
+          }},
+      solver.state);
+  find_buried_vertices(solved_mesh(solver), *context.mesh, *context.occlusion, context.offset, solver.buried);
   update_stats(solver,
                solver.stats.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return true;
@@ -158,12 +167,13 @@ std::shared_ptr<const patch_mesh> refined_mesh(const radiosity_solver& solver) {
 
 std::shared_ptr<const radiosity_snapshot> make_snapshot(const radiosity_solver& solver) {
   return std::visit(overloaded{[&](const std::unique_ptr<progressive_state>& p) {
-                                 return make_snapshot(*p->mesh, p->radiosity, p->direct, {}, p->unshot, solver.stats);
+                                 return make_snapshot(*p->mesh, p->radiosity, p->direct, {}, p->unshot, solver.stats,
+                                                      solver.buried);
                                },
                                [&](const std::unique_ptr<hierarchical_run>& run) {
                                  const vertex_light& light = run->published;
                                  return make_snapshot(run->solver->mesh(), light.radiosity, light.direct, light.caustic,
-                                                      run->solver->residual, solver.stats);
+                                                      run->solver->residual, solver.stats, solver.buried);
                                }},
                     solver.state);
 }

@@ -42,6 +42,10 @@ struct radiosity_solver {
 
   std::variant<std::unique_ptr<progressive_state>, std::unique_ptr<hierarchical_run>> state;
   solver_stats stats;  // as of the last step
+  // Which vertices of the solved mesh are inside solids
+  // (transfer/buried_vertices.h), found as the mesh grows; their published
+  // values come from their neighbours outside.
+  std::vector<bool> buried;
 };
 
 // Makes the solver `params.method` over `mesh` (which, like `s`, must

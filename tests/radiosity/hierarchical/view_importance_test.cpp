@@ -128,7 +128,7 @@ TEST(ViewImportance, TheFinalGatherIsMadeWhereTheViewLooks) {
     }
     if (h.gathered_at[v]) {
       ++seen;
-    } else {
+    } else if (!led->buried[v]) {  // the ceiling over the lamp's back takes its neighbours' values
       EXPECT_EQ(radiosity[v], averaged[v]) << "vertex " << v;
     }
   }
