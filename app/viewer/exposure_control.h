@@ -8,9 +8,15 @@
 
 #include <chrono>
 
+#include "image/image.h"
 #include "render/mesh_renderer.h"
 
 namespace bounce {
+
+// The current framebuffer's `width` x `height` pixels at the origin (the
+// view, drawn, before the panel) as radiance: the display's tone curve and
+// exposure undone, to 8-bit precision. Row 0 at the top.
+image read_view_radiance(int width, int height, const gl::display_settings& display);
 
 // `current` moved towards `target` (both exposures) as an exponential
 // approach in stops with a time constant of half a second, over `seconds`.

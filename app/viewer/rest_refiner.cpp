@@ -5,6 +5,7 @@
 
 #include <tbb/task_arena.h>
 
+#include "image/pass_blend.h"
 #include "trace/radiosity_field.h"
 
 namespace bounce {
@@ -29,20 +30,23 @@ std::shared_ptr<const refined_picture> rest_refiner::picture() const {
 
 void rest_refiner::start(std::shared_ptr<const scene> source, const camera& view,
                          std::shared_ptr<const patch_mesh> mesh, std::shared_ptr<const radiosity_snapshot> solution,
-                         int samples_per_pass, int max_passes) {
+                         image live, int samples_per_pass, int max_passes) {
   stop();
   const std::uint64_t run = latest_ = latest_ + 1;
   run_ = run;
-  jobs_.post([this, run, source, view, mesh, solution, samples_per_pass, max_passes] {
+  if (live.width != view.width || live.height != view.height) live = image{};
+  jobs_.post([this, run, source, view, mesh, solution, live = std::move(live), samples_per_pass, max_passes] {
     if (latest_ != run) return;  // dropped before it began
     // One core fewer than the machine has: the window keeps one to draw with.
     tbb::task_arena arena(std::max(1, int(std::thread::hardware_concurrency()) - 1));
-    arena.execute([&] { trace_passes(run, *source, view, mesh.get(), solution.get(), samples_per_pass, max_passes); });
+    arena.execute(
+        [&] { trace_passes(run, *source, view, mesh.get(), solution.get(), live, samples_per_pass, max_passes); });
   });
 }
 
 void rest_refiner::trace_passes(std::uint64_t run, const scene& source, const camera& view, const patch_mesh* mesh,
-                                const radiosity_snapshot* solution, int samples_per_pass, int max_passes) {
+                                const radiosity_snapshot* solution, const image& live, int samples_per_pass,
+                                int max_passes) {
   const ray_scene rays(source);
   std::unique_ptr<radiosity_field> field;
   if (mesh && solution && solution->radiosity.size() == mesh->vertex_count())
@@ -52,7 +56,7 @@ void rest_refiner::trace_passes(std::uint64_t run, const scene& source, const ca
   p.spp = samples_per_pass;
   p.light_samples = 4;  // a pass is cheap; the passes average the shadows
   if (!field) p.diffuse = diffuse_source::ambient;
-  image sum = uniform_image(view.width, view.height, rgb(0.0));
+  pass_sums sums;
   for (int pass = 1; pass <= max_passes && latest_ == run; ++pass) {
     auto progress = std::make_shared<trace_progress>();
     {
@@ -63,10 +67,9 @@ void rest_refiner::trace_passes(std::uint64_t run, const scene& source, const ca
     trace_stats stats;
     const image one = trace_image(source, view, rays, field.get(), p, progress.get(), &stats);
     if (stats.cancelled || latest_ != run) return;
-    for (std::size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += one.pixels[i];
+    add_pass(sums, one);
     auto out = std::make_shared<refined_picture>();
-    out->mean = sum;
-    for (float& v : out->mean.pixels) v /= float(pass);
+    out->shown = blend_passes_with_live(live, sums);
     out->passes = pass;
     out->run = run;
     const std::lock_guard lock(mutex_);

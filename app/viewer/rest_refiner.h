@@ -1,9 +1,11 @@
 // Refinement at rest, as in Blender's viewport: when the camera has been
 // still for a moment, passes of the still's integrator (two-pass Whitted
 // from the latest radiosity solution, a few jittered samples per pixel a
-// pass) accumulate in the background, and the window shows their mean in
-// place of the Gouraud view. Moving the camera drops them at once. GL-free:
-// the window uploads the picture itself. Nothing here blocks the caller.
+// pass) accumulate in the background, and the window shows them blended
+// with the live Gouraud view by their noise (image/pass_blend.h): the live
+// picture where it agrees with the passes within their noise, the passes
+// where it does not. Moving the camera drops them at once. GL-free: the
+// window uploads the picture itself. Nothing here blocks the caller.
 #pragma once
 
 #include <atomic>
@@ -19,7 +21,7 @@
 namespace bounce {
 
 struct refined_picture {
-  image mean;  // linear radiance: the mean of `passes` passes
+  image shown;  // linear radiance: `passes` passes blended with the live view
   int passes = 0;
   std::uint64_t run = 0;  // which start() it belongs to
 };
@@ -33,8 +35,11 @@ class rest_refiner {
 
   // Starts accumulating passes of `view` (at its size) with the solution of
   // `mesh`; a run already going is dropped. At most `max_passes` passes.
+  // `live`: the live view's radiance at the view's size, or empty (then the
+  // passes' mean is shown).
   void start(std::shared_ptr<const scene> source, const camera& view, std::shared_ptr<const patch_mesh> mesh,
-             std::shared_ptr<const radiosity_snapshot> solution, int samples_per_pass = 2, int max_passes = 64);
+             std::shared_ptr<const radiosity_snapshot> solution, image live, int samples_per_pass = 2,
+             int max_passes = 64);
   // Drops the run: its passes are forgotten, the one being traced stops soon.
   void stop();
 
@@ -44,7 +49,7 @@ class rest_refiner {
 
  private:
   void trace_passes(std::uint64_t run, const scene& source, const camera& view, const patch_mesh* mesh,
-                    const radiosity_snapshot* solution, int samples_per_pass, int max_passes);
+                    const radiosity_snapshot* solution, const image& live, int samples_per_pass, int max_passes);
 
   mutable std::mutex mutex_;
   std::shared_ptr<const refined_picture> picture_;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <glad/gl.h>
 // glad first: GLFW must not pull in a GL header of its own.
@@ -169,8 +170,9 @@ class viewer_app {
   std::uint64_t still_uploaded_ = 0;
   double still_exposure_ = 0.0;
 
-  rest_refiner refiner_;  // passes of the still's integrator while the camera rests
-  picture_quad refined_;  // their mean, drawn over the Gouraud view
+  rest_refiner refiner_;              // passes of the still's integrator while the camera rests
+  picture_quad refined_;              // their blend with the live view, drawn over the Gouraud view
+  std::optional<camera> rest_start_;  // passes to start once the live view is drawn
   int refined_passes_ = 0;
   double refined_exposure_ = 0.0;
   orbit_state rested_orbit_;
@@ -373,6 +375,11 @@ panel_actions viewer_app::draw(const worker_view& view, int frame, panel_actions
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glViewport(0, 0, width_, height_);  // the view: the window left of the panel
   if (view.mesh) renderer_.draw(view_projection, glm::vec3(cam.eye), display);
+  if (rest_start_) {
+    refiner_.start(view.source, *rest_start_, view.mesh, refined_solution_,
+                   read_view_radiance(width_, height_, panel_.display));
+    rest_start_.reset();
+  }
   if (refined_passes_ > 0) refined_.draw();
   // Automatic exposure from the picture as drawn, once it is lit (the
   // headlit preview follows the exposure, so it cannot set it).
@@ -434,6 +441,7 @@ void viewer_app::refine_at_rest(const worker_view& view) {
   const bool new_solution = view.converged && view.solution != refined_solution_;
   if (moved || !refine_wanted || (new_solution && refiner_.active()) || (view.running && refiner_.active())) {
     refiner_.stop();
+    rest_start_.reset();
     refined_passes_ = 0;
     refined_.clear();
     if (moved) last_motion_ = now;
@@ -448,17 +456,17 @@ void viewer_app::refine_at_rest(const worker_view& view) {
   // passes of a solution still moving were noisier than the live view and
   // were thrown away at every new solution anyway (a million triangles
   // showed noise for more than 30 s).
-  if (!refiner_.active() && refine_wanted && rested >= rest_seconds && !view.running && view.source && view.mesh &&
-      view.solution && view.solution->stats.steps > 0 && width_ > 0 && height_ > 0) {
+  if (!refiner_.active() && !rest_start_ && refine_wanted && rested >= rest_seconds && !view.running && view.source &&
+      view.mesh && view.solution && view.solution->stats.steps > 0 && width_ > 0 && height_ > 0) {
     camera cam = camera_from_orbit(orbit_, scene_camera_);
     cam.width = width_;
     cam.height = height_;
-    refiner_.start(view.source, cam, view.mesh, view.solution);
+    rest_start_ = cam;  // started once this frame's live view is drawn: it is read back for the blend
     refined_solution_ = view.solution;
   }
   if (const auto picture = refiner_.picture();
       picture && (picture->passes != refined_passes_ || panel_.display.exposure != refined_exposure_)) {
-    refined_.upload(picture->mean, panel_.display.exposure);
+    refined_.upload(picture->shown, panel_.display.exposure);
     refined_passes_ = picture->passes;
     refined_exposure_ = panel_.display.exposure;
   }
