@@ -1,5 +1,6 @@
 #include "viewer/solver_worker.h"
 
+#include "mesh/preview_mesh.h"
 #include "radiosity/solve.h"
 #include "scene/scene_io.h"
 
@@ -156,8 +157,16 @@ void solver_worker::handle(command& c) {
         if (c.what == kind::reload) solver_.reset();
         solve_setup fresh;
         std::string error;
+        if (c.what != kind::reload) {  // a new scene: its shape at once (a reload shows the old mesh meanwhile)
+          enter_stage("tessellating " + s->source);
+          preview_ = std::make_shared<const patch_mesh>(make_preview_mesh(*s));
+          preview_source_ = s;
+        }
         enter_stage("meshing " + s->source);
-        if (!mesh_for_solve(*s, c.settings, fresh, error)) {
+        const bool meshed = mesh_for_solve(*s, c.settings, fresh, error);
+        preview_.reset();
+        preview_source_.reset();
+        if (!meshed) {
           error_ = s->source + ": " + error;
           enter_stage("");
           if (!solver_ && mesh_) {  // the previous run starts again
@@ -230,10 +239,12 @@ void solver_worker::publish() {
   auto v = std::make_shared<worker_view>();
   v->mesh_version = mesh_version_;
   v->run = run_;
-  v->source = scene_;
+  v->source = preview_ ? preview_source_ : scene_;
   v->warnings = warnings_;
-  v->mesh = solver_ && refined_mesh(*solver_) ? refined_mesh(*solver_) : mesh_;  // the solver may refine it
-  v->meshed_elements = mesh_ ? mesh_->element_count() : 0;
+  v->mesh = preview_                            ? preview_
+            : solver_ && refined_mesh(*solver_) ? refined_mesh(*solver_)
+                                                : mesh_;  // the solver may refine it
+  v->meshed_elements = mesh_ && !preview_ ? mesh_->element_count() : 0;
   v->settings = settings_;
   v->settings.stop = criterion_;
   if (v->mesh != arrays_mesh_) {  // once per mesh: a large one takes a while
@@ -242,7 +253,7 @@ void solver_worker::publish() {
     arrays_mesh_ = v->mesh;
   }
   v->mesh_arrays = mesh_arrays_;
-  if (solver_) {
+  if (solver_ && !preview_) {  // an old scene's solver, while a new one is meshed, is not shown
     v->solution = make_snapshot(*solver_);
     v->colours = std::make_shared<const std::vector<glm::vec3>>(gl::solution_colours(*v->solution));
   }
@@ -251,7 +262,7 @@ void solver_worker::publish() {
   v->error = error_;
   v->stage = stage_;
   v->stage_started = stage_started_;
-  if (solver_) {
+  if (solver_ && !preview_) {
     v->converged = exhausted_ || stop_reached(*solver_, criterion_);
     v->running = !paused_ && !v->converged;
   }

@@ -146,6 +146,10 @@ class solver_worker {
   std::shared_ptr<const scene> scene_;
   std::shared_ptr<const std::vector<std::string>> warnings_;  // scene_'s
   std::shared_ptr<const patch_mesh> mesh_;
+  // A new scene's surfaces as they come (mesh/preview_mesh.h), shown while
+  // its patch mesh is built; null otherwise.
+  std::shared_ptr<const patch_mesh> preview_;
+  std::shared_ptr<const scene> preview_source_;
   std::unique_ptr<radiosity_solver> solver_;
   solver_settings settings_;
   stop_criterion criterion_;

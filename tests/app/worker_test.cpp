@@ -308,6 +308,36 @@ TEST(SolverWorker, SaysWhatItDoesBeforeItSolves) {
   EXPECT_TRUE(worker.latest()->mesh);
 }
 
+// While a new scene is meshed, its surfaces as they come are shown (no
+// solution with them); then the patch mesh takes their place.
+TEST(SolverWorker, ShowsTheSurfacesWhileItMeshes) {
+  solver_worker worker;
+  worker.load_file("generated:interior-100k", coarse(0.5));
+  std::shared_ptr<const patch_mesh> preview;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto view = worker.latest();
+    if (view->mesh && view->stage.rfind("meshing", 0) == 0) {
+      preview = view->mesh;
+      EXPECT_FALSE(view->solution);
+      EXPECT_EQ(view->meshed_elements, 0u);
+      ASSERT_TRUE(view->source);
+      EXPECT_EQ(view->source->source, "generated:interior-100k");
+      break;
+    }
+    if (view->mesh && view->stage.empty()) break;  // meshed already: missed
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(preview) << "no preview while meshing";
+  worker.wait_idle();
+  const auto done = worker.latest();
+  ASSERT_TRUE(done->mesh);
+  EXPECT_NE(done->mesh, preview);
+  // The mesher cuts away hidden ground and overlaps: never more area than the preview.
+  EXPECT_LE(total_area(*done->mesh), total_area(*preview) * (1.0 + 1e-9));
+  EXPECT_GT(total_area(*done->mesh), 0.8 * total_area(*preview));
+}
+
 // A reference being traced says so, and Cancel stops it: nothing is
 // measured, and the panel is told it was cancelled.
 TEST(ErrorTracker, AReferenceSaysItIsBeingTracedAndCanBeCancelled) {
