@@ -2,16 +2,73 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "render/closed_surface.h"
 
 namespace bounce::gl {
+namespace {
+
+// 30 bits of a Morton (Z-order) code: 10 per axis of the point's place in the box.
+std::uint32_t morton_code(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& size) {
+  auto spread = [](std::uint32_t v) {  // 10 bits to every third of 30
+    v = (v | (v << 16)) & 0x030000FFu;
+    v = (v | (v << 8)) & 0x0300F00Fu;
+    v = (v | (v << 4)) & 0x030C30C3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+  };
+  std::uint32_t code = 0;
+  for (int a = 0; a < 3; ++a) {
+    const float t = size[a] > 0.0f ? (p[a] - lo[a]) / size[a] : 0.0f;
+    code |= spread(std::uint32_t(std::clamp(t, 0.0f, 1.0f) * 1023.0f)) << a;
+  }
+  return code;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::size_t, std::size_t>> visible_ranges(const std::vector<draw_chunk>& chunks,
+                                                                const glm::mat4& view_projection) {
+  // The frustum's planes from the matrix's rows (Gribb and Hartmann):
+  // w + x, w - x, w + y, w - y, w + z, w - z >= 0 inside.
+  glm::vec4 planes[6];
+  const glm::mat4& m = view_projection;
+  const glm::vec4 row[4] = {{m[0][0], m[1][0], m[2][0], m[3][0]},
+                            {m[0][1], m[1][1], m[2][1], m[3][1]},
+                            {m[0][2], m[1][2], m[2][2], m[3][2]},
+                            {m[0][3], m[1][3], m[2][3], m[3][3]}};
+  for (int a = 0; a < 3; ++a) {
+    planes[2 * a] = row[3] + row[a];
+    planes[2 * a + 1] = row[3] - row[a];
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (const draw_chunk& c : chunks) {
+    bool inside = true;
+    for (const glm::vec4& plane : planes) {
+      // The box's corner farthest along the plane's normal.
+      const glm::vec3 far(plane.x > 0.0f ? c.hi.x : c.lo.x, plane.y > 0.0f ? c.hi.y : c.lo.y,
+                          plane.z > 0.0f ? c.hi.z : c.lo.z);
+      if (glm::dot(glm::vec3(plane), far) + plane.w < 0.0f) {
+        inside = false;
+        break;
+      }
+    }
+    if (!inside) continue;
+    if (!out.empty() && out.back().first + out.back().second == c.first)
+      out.back().second += c.count;
+    else
+      out.emplace_back(c.first, c.count);
+  }
+  return out;
+}
 
 mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene> source) {
   mesh_arrays out;
@@ -98,15 +155,38 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
       out.indices.push_back(curved.triangles[t]);
   };
   out.indices.reserve(curved.triangles.size());
+  std::vector<std::pair<std::uint32_t, std::size_t>> plain;  // (Morton code of the centre, element)
+  const glm::vec3 box_size = out.bounds_max - out.bounds_min;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const material* m = material_of(e);
     if (texture_of(m) < 0 && !specular(m)) {
-      emit(e);
+      plain.emplace_back(morton_code(glm::vec3(element_centroid(mesh, e)), out.bounds_min, box_size), e);
       continue;
     }
     const int surface = specular(m) && has_surfaces ? mesh.element_surfaces[e] : -1;
     runs[{mesh.element_materials[e], surface}].push_back(e);
   }
+  std::sort(plain.begin(), plain.end());
+  draw_chunk chunk;
+  auto close_chunk = [&] {
+    chunk.count = out.indices.size() - chunk.first;
+    if (chunk.count == 0) return;
+    chunk.lo = glm::vec3(std::numeric_limits<float>::max());
+    chunk.hi = glm::vec3(-std::numeric_limits<float>::max());
+    for (std::size_t i = chunk.first; i < out.indices.size(); ++i) {
+      const float* p = &data[std::size_t(out.indices[i]) * mesh_arrays::floats_per_vertex];
+      chunk.lo = glm::min(chunk.lo, glm::vec3(p[0], p[1], p[2]));
+      chunk.hi = glm::max(chunk.hi, glm::vec3(p[0], p[1], p[2]));
+    }
+    out.plain_chunks.push_back(chunk);
+    chunk = draw_chunk{};
+    chunk.first = out.indices.size();
+  };
+  for (const auto& [code, e] : plain) {
+    emit(e);
+    if (out.indices.size() - chunk.first >= 3 * chunk_triangles) close_chunk();
+  }
+  close_chunk();
   out.plain_count = out.indices.size();
   for (const auto& [key, elements] : runs) {
     const material& m = source->materials[std::size_t(key.first)];

@@ -6,8 +6,10 @@
 
 #include <cstddef>
 #include <memory>
+#include <utility>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "mesh/patch_mesh.h"
@@ -43,10 +45,30 @@ struct specular_surface {
   float shininess = 0.0f;
 };
 
+// A piece of the plain elements' range, near together in space, with the
+// box round its display vertices: the renderer skips the pieces outside
+// the view (a room of a furnished interior sees a small part of it).
+struct draw_chunk {
+  std::size_t first = 0;  // first index
+  std::size_t count = 0;  // indices
+  glm::vec3 lo{0.0f}, hi{0.0f};
+};
+
+// About this many triangles a chunk: few enough draws (a thousand at a
+// million triangles), small enough boxes.
+inline constexpr std::size_t chunk_triangles = 1024;
+
+// The index ranges of the chunks whose boxes meet the view frustum of
+// `view_projection` (clip = view_projection x world), consecutive ones
+// merged: (first index, count) pairs.
+std::vector<std::pair<std::size_t, std::size_t>> visible_ranges(const std::vector<draw_chunk>& chunks,
+                                                                const glm::mat4& view_projection);
+
 // The mesh as the renderer's buffers take it: interleaved position,
 // normal, reflectance, element size and uv per vertex, and the triangles:
-// those of plain materials first, in the mesh's order, then one run per
-// textured or specular material. Curved surfaces are drawn finer than the
+// those of plain materials first, in chunks ordered along a Morton curve
+// of their elements' centres, then one run per textured or specular
+// material. Curved surfaces are drawn finer than the
 // solver's elements (curved_display.h): the display vertices past the
 // mesh's own take blends of the solution's. Plain CPU work: the window
 // builds it on the solver's thread, so that a large mesh's arrival costs
@@ -59,8 +81,9 @@ struct mesh_arrays {
   std::size_t solution_vertex_count = 0;  // the mesh's vertices, the first of them
   std::vector<vertex_blend> blends;       // the rest, as blends of the first
   float largest_element = 0.0f;
-  std::size_t plain_count = 0;    // indices drawn by the plain program
-  std::size_t outline_first = 0;  // then the elements' edges, pairs of indices (the wireframe)
+  std::size_t plain_count = 0;           // indices drawn by the plain program
+  std::vector<draw_chunk> plain_chunks;  // covering [0, plain_count)
+  std::size_t outline_first = 0;         // then the elements' edges, pairs of indices (the wireframe)
   std::vector<material_run> runs;
   std::vector<specular_surface> probes;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};

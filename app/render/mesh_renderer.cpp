@@ -163,6 +163,7 @@ void mesh_renderer::upload(const mesh_arrays& arrays) {
   blends_ = arrays.blends;
   largest_element_ = arrays.largest_element;
   plain_count_ = arrays.plain_count;
+  plain_chunks_ = arrays.plain_chunks;
   outline_first_ = arrays.outline_first;
   outline_count_ = arrays.indices.size() - arrays.outline_first;
   runs_ = arrays.runs;
@@ -374,7 +375,10 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, 0);
   use(set.plain);
-  glDrawElements(GL_TRIANGLES, GLsizei(plain_count_), GL_UNSIGNED_INT, nullptr);
+  // Only the chunks in the view: llvmpipe's frame time follows the triangles sent.
+  for (const auto& [first, count] : visible_ranges(plain_chunks_, view_projection))
+    glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(std::uintptr_t(first * sizeof(unsigned int))));
   // The background where no sample holds a surface: a full-screen triangle
   // at the far plane through the same shader, so it gets the surfaces'
   // exposure and tone curve (and in linear output, its radiance unscaled).

@@ -110,6 +110,7 @@ class mesh_renderer {
   float largest_element_ = 1.0f;
   glm::vec3 ambient_{0.0f};
   std::size_t plain_count_ = 0;
+  std::vector<draw_chunk> plain_chunks_;  // of the plain range, culled against the view
   std::vector<material_run> runs_;
   std::vector<specular_surface> probe_surfaces_;
   reflection_probes probes_;

@@ -1,5 +1,7 @@
 // The solver thread: commands through one queue, an immutable view
 // published after every step, errors that keep the previous scene.
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -184,7 +186,21 @@ TEST(SolverWorker, PublishesTheMeshAndSolutionAsTheRendererTakesThem) {
   // The triangles, then the elements' outline (2 indices an edge) for the wireframe.
   ASSERT_EQ(view->mesh_arrays->plain_count, 3 * mesh.element_count());
   ASSERT_EQ(view->mesh_arrays->indices.size(), 9 * mesh.element_count());
-  EXPECT_EQ(view->mesh_arrays->indices[4], unsigned(mesh.elements[1][1]));
+  // Every element once, in chunks along a Morton curve rather than in the mesh's order.
+  std::vector<std::array<unsigned, 3>> drawn, elements;
+  for (std::size_t i = 0; i < view->mesh_arrays->plain_count; i += 3)
+    drawn.push_back(
+        {view->mesh_arrays->indices[i], view->mesh_arrays->indices[i + 1], view->mesh_arrays->indices[i + 2]});
+  for (const glm::ivec3& t : mesh.elements) elements.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2])});
+  std::sort(drawn.begin(), drawn.end());
+  std::sort(elements.begin(), elements.end());
+  EXPECT_EQ(drawn, elements);
+  std::size_t chunked = 0;
+  for (const gl::draw_chunk& c : view->mesh_arrays->plain_chunks) {
+    EXPECT_EQ(c.first, chunked);
+    chunked += c.count;
+  }
+  EXPECT_EQ(chunked, view->mesh_arrays->plain_count);
   EXPECT_EQ(view->mesh_arrays->vertices[stride * 7 + 1], float(mesh.positions[7].y));
   ASSERT_EQ(view->colours->size(), 2 * mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
