@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "image/image.h"
+#include "picture_checks.h"
 #include "scene/camera_math.h"
 #include "test_files.h"
 #include "x_server.h"
@@ -223,31 +224,7 @@ TEST(Window, TitleNamesTheSceneAndItJoinsTheRecentList) {
   EXPECT_EQ(first, std::filesystem::path(scene).lexically_normal().string()) << read_text(dir.path("bounce.txt"));
 }
 
-// Mean absolute difference of two 8-bit pictures of one size, over 10 x 10
-// blocks (the blocks' means compared, so that sample noise averages out).
-double block_difference(const std::string& a_path, const std::string& b_path) {
-  int w = 0, h = 0, bw = 0, bh = 0;
-  std::vector<unsigned char> a, b;
-  std::string error;
-  EXPECT_TRUE(read_png_rgb8(a_path, w, h, a, error)) << error;
-  EXPECT_TRUE(read_png_rgb8(b_path, bw, bh, b, error)) << error;
-  if (w != bw || h != bh || w < 10 || h < 10) return INFINITY;
-  double sum = 0.0;
-  int count = 0;
-  for (int by = 0; by + 10 <= h; by += 10)
-    for (int bx = 0; bx + 10 <= w; bx += 10) {
-      double da = 0.0, db = 0.0;
-      for (int y = by; y < by + 10; ++y)
-        for (int x = bx; x < bx + 10; ++x)
-          for (int c = 0; c < 3; ++c) {
-            da += a[(std::size_t(y) * w + x) * 3 + c];
-            db += b[(std::size_t(y) * w + x) * 3 + c];
-          }
-      sum += std::abs(da - db) / 300.0;
-      ++count;
-    }
-  return sum / count;
-}
+using test_support::block_difference;
 
 // At rest, the window refines its picture towards the ray-traced still:
 // the error of what it shows against an independent still of the same
