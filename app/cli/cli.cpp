@@ -94,7 +94,8 @@ int run_cli(int argc, char** argv) {
   CLI::App app{
       "Bounce: global illumination. Hierarchical radiosity with a live Gouraud view, two-pass ray-traced stills\n"
       "and a path-traced reference.\n"
-      "SCENE is a .json scene, a bare .obj, a glTF 2.0 .gltf or .glb, or generated:NAME for a procedural scene\n"
+      "SCENE is a .json scene, a bare .obj, a glTF 2.0 .gltf or .glb, a .ply, .stl, .dae, .fbx, .3ds or .off model, or "
+      "generated:NAME for a procedural scene\n"
       "(generated:box-room-60, generated:interior-10k to generated:interior-20m); without one, the embedded\n"
       "Cornell box."};
   program_options program;

@@ -22,8 +22,10 @@ void print_warnings(const load_report& report) {
 }  // namespace
 
 void add_scene_argument(CLI::App& command, std::string& path) {
-  command.add_option("SCENE", path,
-                     "scene file (.json, .obj, .gltf or .glb), or generated:NAME (e.g. generated:interior-1m)");
+  command.add_option(
+      "SCENE", path,
+      "scene file (.json, .obj, .gltf, .glb, .ply, .stl, .dae, .fbx, .3ds, .off), or generated:NAME (e.g. "
+      "generated:interior-1m)");
 }
 
 // Loads the scene named on the command line (or the embedded default) and

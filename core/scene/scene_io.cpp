@@ -3,6 +3,7 @@
 #include <cctype>
 #include <variant>
 
+#include "scene/assimp_io.h"
 #include "scene/framing.h"
 #include "scene/gltf_io.h"
 #include "scene/json_scene.h"
@@ -149,6 +150,11 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
       s.surfaces = std::move(gltf.surfaces);
       report.warnings = std::move(gltf.warnings);
       s.view = fit_camera(s);
+    } else if (read_through_assimp(path)) {
+      assimp_read_result model = read_assimp(path, s.materials, s.textures);
+      s.surfaces = std::move(model.surfaces);
+      report.warnings = std::move(model.warnings);
+      s.view = fit_camera(s);
     } else if (path.starts_with(generated_prefix)) {
       std::string error;
       if (!make_procedural_scene(std::string_view(path).substr(generated_prefix.size()), s, error))
@@ -157,14 +163,16 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     } else if (ends_with_icase(path, ".json")) {
       read_json_scene(path, s, report.warnings, report.dropped_faces);
     } else {
-      throw load_error(path + ": unknown scene format (expected .json, .obj, .gltf, .glb or generated:NAME)");
+      throw load_error(path +
+                       ": unknown scene format (expected .json, .obj, .gltf, .glb, .ply, .stl, .dae, .fbx, .3ds, "
+                       ".off or generated:NAME)");
     }
     drop_degenerate_faces(s, report);
     for (std::string& w : add_back_sides(s)) report.warnings.push_back(path + ": " + w);
     if (s.surfaces.empty()) throw load_error(path + ": no surfaces left after dropping degenerate faces");
     if (std::string problem = validate_scene(s); !problem.empty()) throw load_error(path + ": " + problem);
-    const bool model_file =
-        ends_with_icase(path, ".obj") || ends_with_icase(path, ".gltf") || ends_with_icase(path, ".glb");
+    const bool model_file = ends_with_icase(path, ".obj") || ends_with_icase(path, ".gltf") ||
+                            ends_with_icase(path, ".glb") || read_through_assimp(path);
     if (model_file && !has_light_source(s)) {
       // Most models come without lights: open them as a viewer would, under a white sky.
       s.sky.zenith = s.sky.horizon = rgb(1.0);

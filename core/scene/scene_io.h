@@ -1,5 +1,5 @@
 // Loading and validating scenes: JSON scene files, bare Wavefront OBJ/MTL,
-// glTF models, procedural scenes and the Cornell box embedded in the
+// glTF models, the formats read through assimp, procedural scenes and the Cornell box embedded in the
 // binary. The readers (json_scene, obj_io, gltf_io) turn a file into a
 // scene; load_scene picks the reader, then drops degenerate faces, adds
 // back sides, validates and warns, so every scene it returns is valid.
@@ -28,8 +28,9 @@ struct load_report {
 // e.g. "generated:interior-1m"; nothing is read from disk.
 inline constexpr std::string_view generated_prefix = "generated:";
 
-// Loads a .json scene, a bare .obj or a glTF 2.0 .gltf/.glb (their camera
-// fitted to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills
+// Loads a .json scene, a bare .obj, a glTF 2.0 .gltf/.glb or a PLY, STL,
+// Collada, FBX, 3DS or OFF model (assimp_io.h; models get a camera fitted
+// to the geometry) or a procedural scene ("generated:NAME") and validates it. On failure returns false, fills
 // report.error with a message naming the file and the line or object, and leaves `out` untouched.
 bool load_scene(const std::string& path, scene& out, load_report& report);
 
