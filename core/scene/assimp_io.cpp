@@ -46,9 +46,13 @@ class collecting_stream : public Assimp::LogStream {
 // size, the stream throws, and assimp turns that into a failed import.
 class guarded_stream : public Assimp::IOStream {
  public:
+  // Owns `inner`: assimp deletes some streams itself rather than through
+  // the IO system's Close.
   explicit guarded_stream(Assimp::IOStream* inner)
       : inner_(inner), budget_((std::size_t(1) << 16) + 4 * inner->FileSize()) {}
-  Assimp::IOStream* inner() const { return inner_; }
+  ~guarded_stream() override { delete inner_; }
+  guarded_stream(const guarded_stream&) = delete;
+  guarded_stream& operator=(const guarded_stream&) = delete;
   size_t Read(void* buffer, size_t size, size_t count) override {
     spend();
     return inner_->Read(buffer, size, count);
@@ -78,11 +82,7 @@ class guarded_files : public Assimp::DefaultIOSystem {
     Assimp::IOStream* inner = DefaultIOSystem::Open(file, mode);
     return inner ? new guarded_stream(inner) : nullptr;
   }
-  void Close(Assimp::IOStream* stream) override {
-    auto* guarded = static_cast<guarded_stream*>(stream);
-    DefaultIOSystem::Close(guarded->inner());
-    delete guarded;
-  }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
 };
 
 std::string lower(std::string s) {
