@@ -373,10 +373,24 @@ struct gltf_reader {
       out.ke = ke;
       if (textured && pbr.baseColorTexture.index >= 0)
         out.texture = base_colour_texture(pbr.baseColorTexture.index, where + ".pbrMetallicRoughness.baseColorTexture");
-      if (pbr.metallicFactor > 0.0 || pbr.metallicRoughnessTexture.index >= 0)
+      // Metallic-roughness: a smooth metal is a mirror tinted by its base
+      // colour (kr = metallic x base, rho the rest); a rough one stays
+      // diffuse, as Bounce has no glossy reflection.
+      const double metallic = std::clamp(pbr.metallicFactor, 0.0, 1.0);
+      const double roughness = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
+      if (metallic >= gltf_mirror_metallic && roughness <= gltf_mirror_roughness) {
+        out.kr = metallic * out.rho;
+        out.rho = (1.0 - metallic) * out.rho;
+      } else if (metallic > 0.0) {
         warn_once("metallic", who +
-                                  ": metallic and roughness ignored (and in every other material): Bounce's "
-                                  "surfaces are diffuse, rho = baseColorFactor x baseColorTexture");
+                                  ": metallic and roughness ignored for rough metals (and in every other material): "
+                                  "a metal is a mirror when metallicFactor >= 0.5 and roughnessFactor <= 0.25, "
+                                  "otherwise diffuse, rho = baseColorFactor x baseColorTexture");
+      }
+      if (pbr.metallicRoughnessTexture.index >= 0)
+        warn_once("metallic texture", who +
+                                          ": metallicRoughnessTexture ignored (and in every other material): "
+                                          "the factors alone decide mirror or diffuse");
       if (g.normalTexture.index >= 0) warn_once("normal", who + ": normal maps ignored (and in every other material)");
       if (g.occlusionTexture.index >= 0)
         warn_once("occlusion", who +

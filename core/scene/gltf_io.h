@@ -13,6 +13,12 @@
 
 namespace bounce {
 
+// A metallic-roughness material is a mirror when metallicFactor is at least
+// this and roughnessFactor at most the next (glTF's defaults, 1 and 1, are a
+// rough metal: diffuse). A mirror's kr is metallicFactor x base colour.
+inline constexpr double gltf_mirror_metallic = 0.5;
+inline constexpr double gltf_mirror_roughness = 0.25;
+
 struct gltf_read_result {
   std::vector<surface> surfaces;  // one polygon mesh per node that holds a mesh
   std::vector<std::string> warnings;
@@ -20,7 +26,7 @@ struct gltf_read_result {
 
 // Reads `path` (the scene's default scene, or scene 0): triangles with
 // their node transforms applied, base colour as rho (texture included),
-// emission as ke. New materials and textures are appended to the lists and
+// smooth metals as mirrors, emission as ke. New materials and textures are appended to the lists and
 // faces refer to them by index. What Bounce cannot use (metallic,
 // roughness, normal maps, cameras, lights, animation, ...) gets one warning
 // per kind. Throws load_error.

@@ -352,6 +352,38 @@ TEST(Gltf, MirroredNodeKeepsFacesAndNormalsOutward) {
   }
 }
 
+// Metallic-roughness: a smooth metal is a mirror of its base colour, a
+// half-metal part mirror and part diffuse; rough metals and smooth
+// plastics stay diffuse (the thresholds: gltf_io.h).
+TEST(Gltf, SmoothMetalIsAMirrorAndRoughMetalStaysDiffuse) {
+  scratch_dir dir;
+  gltf_file f;
+  auto pbr = [&](double metallic, double roughness, double r, double g, double b) {
+    return f.material(
+        {{"pbrMetallicRoughness",
+          {{"baseColorFactor", {r, g, b, 1}}, {"metallicFactor", metallic}, {"roughnessFactor", roughness}}}});
+  };
+  const int gold = pbr(1.0, 0.1, 0.9, 0.6, 0.2), half = pbr(0.6, 0.25, 0.5, 0.5, 0.5),
+            brushed = pbr(1.0, 0.6, 0.7, 0.7, 0.7), plastic = pbr(0.0, 0.0, 0.2, 0.4, 0.6);
+  const int mesh = f.mesh({unit_quad(f, gold), unit_quad(f, half), unit_quad(f, brushed), unit_quad(f, plastic)});
+  f.roots({f.node({{"mesh", mesh}})});
+  const std::string path = dir.write("metals.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  ASSERT_EQ(s.materials.size(), 4u);
+  EXPECT_EQ(s.materials[0].kr, rgb(0.9, 0.6, 0.2));
+  EXPECT_EQ(s.materials[0].rho, rgb(0.0));
+  EXPECT_NEAR(s.materials[1].kr.r, 0.3, 1e-12);
+  EXPECT_NEAR(s.materials[1].rho.r, 0.2, 1e-12);
+  EXPECT_EQ(s.materials[2].kr, rgb(0.0));
+  EXPECT_EQ(s.materials[2].rho, rgb(0.7));
+  EXPECT_EQ(s.materials[3].kr, rgb(0.0));
+  EXPECT_EQ(s.materials[3].rho, rgb(0.2, 0.4, 0.6));
+  EXPECT_EQ(count_warnings(report, "metallic and roughness ignored for rough metals"), 1)
+      << ::testing::PrintToString(report.warnings);
+}
+
 TEST(Gltf, IgnoredFeaturesAreWarnedAboutOncePerKind) {
   scratch_dir dir;
   gltf_file f;
