@@ -15,8 +15,10 @@ namespace bounce {
 
 // The current framebuffer's `width` x `height` pixels at the origin (the
 // view, drawn, before the panel) as radiance: the display's tone curve and
-// exposure undone, to 8-bit precision. Row 0 at the top.
-image read_view_radiance(int width, int height, const gl::display_settings& display);
+// exposure undone, to 8-bit precision. Row 0 at the top. With `stride` > 1,
+// only every stride-th pixel of every stride-th row, in a picture that
+// much smaller.
+image read_view_radiance(int width, int height, const gl::display_settings& display, int stride = 1);
 
 // `current` moved towards `target` (both exposures) as an exponential
 // approach in stops with a time constant of half a second, over `seconds`.

@@ -12,25 +12,26 @@ double luminance_at(const image& img, std::size_t pixel) {
   return luminance(rgb(img.pixels[3 * pixel], img.pixels[3 * pixel + 1], img.pixels[3 * pixel + 2]));
 }
 
-// The mean over a (2 radius + 1)^2 window (clipped at the borders), by two
-// one-dimensional passes of running sums.
-std::vector<double> box_mean(const std::vector<double>& values, int width, int height, int radius) {
-  std::vector<double> across(values.size()), out(values.size());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
+// The mean over a window of 2 radius + 1 (clipped at the ends) along
+// `lines` lines of `length` values, value i of line l at l * across + i * along.
+std::vector<double> line_means(const std::vector<double>& values, int lines, int length, std::size_t across,
+                               std::size_t along, int radius) {
+  std::vector<double> out(values.size());
+  for (int l = 0; l < lines; ++l)
+    for (int i = 0; i < length; ++i) {
+      const int lo = std::max(0, i - radius), hi = std::min(length - 1, i + radius);
       double sum = 0.0;
-      const int lo = std::max(0, x - radius), hi = std::min(width - 1, x + radius);
-      for (int k = lo; k <= hi; ++k) sum += values[std::size_t(y) * width + k];
-      across[std::size_t(y) * width + x] = sum / (hi - lo + 1);
-    }
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      double sum = 0.0;
-      const int lo = std::max(0, y - radius), hi = std::min(height - 1, y + radius);
-      for (int k = lo; k <= hi; ++k) sum += across[std::size_t(k) * width + x];
-      out[std::size_t(y) * width + x] = sum / (hi - lo + 1);
+      for (int k = lo; k <= hi; ++k) sum += values[l * across + k * along];
+      out[l * across + i * along] = sum / (hi - lo + 1);
     }
   return out;
+}
+
+// The mean over a (2 radius + 1)^2 window (clipped at the borders): along
+// the rows, then along the columns.
+std::vector<double> box_mean(const std::vector<double>& values, int width, int height, int radius) {
+  const std::vector<double> across = line_means(values, height, width, std::size_t(width), 1, radius);
+  return line_means(across, width, height, 1, std::size_t(width), radius);
 }
 
 }  // namespace

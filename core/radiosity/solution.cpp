@@ -54,9 +54,10 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const patch_mesh& mesh, 
   snap->direct.assign(direct.begin(), direct.end());
   snap->caustic.assign(caustic.begin(), caustic.end());
   if (buried.size() == mesh.vertex_count()) {
-    fill_buried_vertices(mesh, buried, snap->radiosity);
-    fill_buried_vertices(mesh, buried, snap->direct);
-    if (!snap->caustic.empty()) fill_buried_vertices(mesh, buried, snap->caustic);
+    if (snap->caustic.empty())
+      fill_buried_vertices(mesh, buried, {snap->radiosity, snap->direct});
+    else
+      fill_buried_vertices(mesh, buried, {snap->radiosity, snap->direct, snap->caustic});
   }
   std::vector<rgb> sum(mesh.vertex_count(), rgb(0.0));
   std::vector<int> count(mesh.vertex_count(), 0);

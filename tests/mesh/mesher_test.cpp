@@ -125,13 +125,19 @@ TEST(Mesher, VerticesAreSplitAtCornersAndSharedOnFlatSurfaces) {
   EXPECT_EQ(ceiling_vertices, ceiling_positions);
 }
 
-TEST(Mesher, CurvedSurfacesKeepTheirTrueNormalsAndShareVertices) {
+// A ball of radius 0.5 at (1, 2, 3), material 0 grey.
+scene ball_at_123() {
   scene s;
-  int white = add_material(s, rgb(0.5));
+  const int white = add_material(s, rgb(0.5));
   surface ball;
   ball.name = "ball";
   ball.geometry = sphere{vec3(1, 2, 3), 0.5, white};
   s.surfaces.push_back(ball);
+  return s;
+}
+
+TEST(Mesher, CurvedSurfacesKeepTheirTrueNormalsAndShareVertices) {
+  scene s = ball_at_123();
   patch_mesh mesh = mesh_of(s, 0.1);
   ASSERT_GT(mesh.element_count(), 200u);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -153,13 +159,8 @@ TEST(Mesher, CurvedSurfacesKeepTheirTrueNormalsAndShareVertices) {
 // 0.2% of the radius (measured: 0.14% at worst), where chord midpoints fall
 // 1.5-3% inside; a flat surface's stay in its plane.
 TEST(Mesher, SplitsOfCurvedSurfacesFollowTheCurve) {
-  scene s;
-  int white = add_material(s, rgb(0.5));
-  surface ball;
-  ball.name = "ball";
-  ball.geometry = sphere{vec3(1, 2, 3), 0.5, white};
-  s.surfaces.push_back(ball);
-  add_polygon(s, {{-2, -1, -2}, {-2, -1, 2}, {2, -1, 2}, {2, -1, -2}}, white);
+  scene s = ball_at_123();
+  add_polygon(s, {{-2, -1, -2}, {-2, -1, 2}, {2, -1, 2}, {2, -1, -2}}, 0);
   patch_mesh mesh = mesh_of(s, 10.0);
   ASSERT_EQ(mesh.curved_surfaces, (std::vector<bool>{true, false}));
   const std::size_t old_vertices = mesh.vertex_count();

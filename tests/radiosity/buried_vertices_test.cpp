@@ -32,12 +32,16 @@ scene two_balls() {
   return s;
 }
 
-TEST(BuriedVertices, InsideTheOtherBallAndNowhereElse) {
-  const scene s = two_balls();
-  const patch_mesh mesh = mesh_of(s, 0.2);
+std::vector<bool> buried_in(const patch_mesh& mesh) {
   const form_factor_context context = make_form_factor_context(mesh, form_factor_params{});
   std::vector<bool> buried;
   find_buried_vertices(mesh, mesh, *context.occlusion, context.offset, buried);
+  return buried;
+}
+
+TEST(BuriedVertices, InsideTheOtherBallAndNowhereElse) {
+  const patch_mesh mesh = mesh_of(two_balls(), 0.2);
+  const std::vector<bool> buried = buried_in(mesh);
   ASSERT_EQ(buried.size(), mesh.vertex_count());
   std::size_t inside = 0, outside = 0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -59,20 +63,18 @@ TEST(BuriedVertices, InsideTheOtherBallAndNowhereElse) {
   EXPECT_GT(inside, 20u);
   EXPECT_GT(outside, 100u);
   // Flags already known are kept: a second call adds nothing and changes nothing.
+  const form_factor_context context = make_form_factor_context(mesh, form_factor_params{});
   std::vector<bool> again = buried;
   find_buried_vertices(mesh, mesh, *context.occlusion, context.offset, again);
   EXPECT_EQ(again, buried);
 }
 
 TEST(BuriedVertices, TakeTheirNeighboursValuesRoundByRound) {
-  const scene s = two_balls();
-  const patch_mesh mesh = mesh_of(s, 0.2);
-  const form_factor_context context = make_form_factor_context(mesh, form_factor_params{});
-  std::vector<bool> buried;
-  find_buried_vertices(mesh, mesh, *context.occlusion, context.offset, buried);
+  const patch_mesh mesh = mesh_of(two_balls(), 0.2);
+  const std::vector<bool> buried = buried_in(mesh);
   std::vector<rgb> values(mesh.vertex_count());
   for (std::size_t v = 0; v < values.size(); ++v) values[v] = buried[v] ? rgb(0.0) : rgb(2.0, 1.0, 0.5);
-  fill_buried_vertices(mesh, buried, values);
+  fill_buried_vertices(mesh, buried, {values});
   for (std::size_t v = 0; v < values.size(); ++v)
     ASSERT_EQ(values[v], rgb(2.0, 1.0, 0.5)) << "vertex " << v << (buried[v] ? " (buried)" : "");
 }

@@ -1,7 +1,9 @@
 #include "radiosity/transfer/buried_vertices.h"
 
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <utility>
 
 #include "base/check.h"
 #include "base/directions.h"
@@ -48,42 +50,47 @@ void find_buried_vertices(const patch_mesh& mesh, const patch_mesh& occluders, c
   for (std::size_t i = 0; i < fresh; ++i) buried[known + i] = found[i] != 0;
 }
 
-void fill_buried_vertices(const patch_mesh& mesh, const std::vector<bool>& buried, std::span<rgb> values) {
-  BOUNCE_CHECK_EQ(values.size(), mesh.vertex_count());
+void fill_buried_vertices(const patch_mesh& mesh, const std::vector<bool>& buried,
+                          std::initializer_list<std::span<rgb>> arrays) {
+  for (const std::span<rgb>& values : arrays) BOUNCE_CHECK_EQ(values.size(), mesh.vertex_count());
   if (buried.size() != mesh.vertex_count()) return;
-  std::vector<char> known(mesh.vertex_count());
-  std::size_t missing = 0;
-  for (std::size_t v = 0; v < known.size(); ++v) {
-    known[v] = !buried[v];
-    missing += buried[v];
+  std::vector<std::size_t> touching;  // elements with a buried corner
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const glm::ivec3 t = mesh.elements[e];
+    if (buried[std::size_t(t[0])] || buried[std::size_t(t[1])] || buried[std::size_t(t[2])]) touching.push_back(e);
   }
-  std::vector<rgb> sum(mesh.vertex_count());
-  std::vector<double> weight(mesh.vertex_count());
-  for (int round = 0; round < 16 && missing > 0; ++round) {
-    std::fill(sum.begin(), sum.end(), rgb(0.0));
-    std::fill(weight.begin(), weight.end(), 0.0);
-    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+  if (touching.empty()) return;
+  std::vector<char> known(mesh.vertex_count());
+  for (std::size_t v = 0; v < known.size(); ++v) known[v] = !buried[v];
+  // Per round: each vertex still unknown and the weights of its known neighbours.
+  std::map<std::size_t, std::vector<std::pair<std::size_t, double>>> round;
+  for (int pass = 0; pass < 16; ++pass) {
+    round.clear();
+    for (std::size_t e : touching) {
       const glm::ivec3 t = mesh.elements[e];
       for (int k = 0; k < 3; ++k) {
         const std::size_t v = std::size_t(t[k]);
         if (known[v]) continue;
-        for (int j = 1; j < 3; ++j) {
-          const std::size_t u = std::size_t(t[(k + j) % 3]);
-          if (!known[u]) continue;
-          sum[v] += mesh.element_areas[e] * values[u];
-          weight[v] += mesh.element_areas[e];
-        }
+        for (int j = 1; j < 3; ++j)
+          if (const std::size_t u = std::size_t(t[(k + j) % 3]); known[u])
+            round[v].emplace_back(u, mesh.element_areas[e]);
       }
     }
-    std::size_t filled = 0;
-    for (std::size_t v = 0; v < known.size(); ++v)
-      if (!known[v] && weight[v] > 0.0) {
-        values[v] = sum[v] / weight[v];
-        known[v] = 1;
-        ++filled;
+    if (round.empty()) break;
+    std::vector<std::size_t> filled;
+    for (const auto& [v, from] : round) {
+      double weight = 0.0;
+      for (const auto& [u, w] : from) weight += w;
+      if (!(weight > 0.0)) continue;
+      filled.push_back(v);
+      for (const std::span<rgb>& values : arrays) {
+        rgb sum(0.0);
+        for (const auto& [u, w] : from) sum += w * values[u];
+        values[v] = sum / weight;
       }
-    if (filled == 0) break;
-    missing -= filled;
+    }
+    if (filled.empty()) break;
+    for (std::size_t v : filled) known[v] = 1;
   }
 }
 

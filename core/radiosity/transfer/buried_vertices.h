@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
 #include <span>
 #include <vector>
 
@@ -28,10 +29,13 @@ inline constexpr int buried_probe_rays = 6;
 void find_buried_vertices(const patch_mesh& mesh, const patch_mesh& occluders, const occlusion_scene& scene,
                           double offset, std::vector<bool>& buried);
 
-// Replaces the value of each buried vertex by the area-weighted mean of
-// its element neighbours that are outside (or were filled in an earlier
-// round, for vertices deeper in). A buried vertex with no such neighbour
-// within 16 rounds keeps its value.
-void fill_buried_vertices(const patch_mesh& mesh, const std::vector<bool>& buried, std::span<rgb> values);
+// Replaces the value of each buried vertex, in every array of `arrays`
+// (one value per vertex each), by the area-weighted mean of its element
+// neighbours that are outside (or were filled in an earlier round, for
+// vertices deeper in). A buried vertex with no such neighbour within 16
+// rounds keeps its value. Only the elements that touch a buried vertex
+// are visited.
+void fill_buried_vertices(const patch_mesh& mesh, const std::vector<bool>& buried,
+                          std::initializer_list<std::span<rgb>> arrays);
 
 }  // namespace bounce
