@@ -70,8 +70,10 @@ uniform float ior;
 uniform int fresnel_on;
 // The point lights' Phong highlights (the still's, without its shadow rays).
 uniform int light_count;
-uniform vec3 light_position[4];
-uniform vec3 light_intensity[4];  // W/sr
+uniform vec4 light_position[4];   // w = 1: a point or spot light at xyz; w = 0: a sun, xyz toward it
+uniform vec3 light_intensity[4];  // W/sr (a sun: W/m^2)
+uniform vec3 light_axis[4];       // a spot's direction
+uniform vec2 light_cone[4];       // cos outer cone, 1 / (cos inner - cos outer): lights.cpp's cone_share
 uniform vec3 specular_colour;
 uniform float shininess;
 #endif
@@ -189,13 +191,14 @@ vec3 specular_radiance(vec3 p, vec3 normal) {
   radiance += kr * environment_along(p, reflect(view, n));
   if (shininess > 0.0) {
     for (int i = 0; i < light_count; ++i) {  // ray_tracer.cpp's phong(), front side only
-      vec3 to = light_position[i] - p;
-      float d2 = dot(to, to);
-      vec3 l = to / sqrt(d2);
+      vec3 to = light_position[i].xyz - light_position[i].w * p;
+      float d2 = light_position[i].w == 0.0 ? 1.0 : dot(to, to);
+      vec3 l = to / sqrt(dot(to, to));
+      float cone = clamp((dot(light_axis[i], -l) - light_cone[i].x) * light_cone[i].y, 0.0, 1.0);
       float cos_x = dot(n, l), c = dot(reflect(-l, n), -view);
       if (!front || cos_x <= 0.0 || c <= 0.0) continue;
       radiance += specular_colour * (shininess + 2.0) / (2.0 * 3.14159265358979) * pow(c, shininess) *
-                  light_intensity[i] * cos_x / d2;
+                  light_intensity[i] * cone * cone * cos_x / d2;
     }
   }
   return radiance;

@@ -66,6 +66,8 @@ int run_info(const info_options& options) {
         {"emitting_materials", sum.emitting_materials},
         {"emitting_surfaces", sum.emitting_surfaces},
         {"point_lights", sum.point_lights},
+        {"spot_lights", sum.spot_lights},
+        {"suns", sum.suns},
         {"sky", sum.sky},
         {"bounds",
          {{"min", {sum.bounds.min.x, sum.bounds.min.y, sum.bounds.min.z}},
@@ -92,7 +94,8 @@ int run_info(const info_options& options) {
             << "materials:  " << sum.materials << " (" << sum.emitting_materials << " emitting), textures "
             << sum.textures << "\n"
             << "emitters:   " << sum.emitting_surfaces << " surface(s), " << sum.point_lights << " point light(s)"
-            << (sum.sky ? ", a sky" : "") << "\n"
+            << (sum.spot_lights ? ", " + std::to_string(sum.spot_lights) + " spot light(s)" : "")
+            << (sum.suns ? ", " + std::to_string(sum.suns) + " sun(s)" : "") << (sum.sky ? ", a sky" : "") << "\n"
             << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
             << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
             << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";

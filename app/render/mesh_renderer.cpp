@@ -317,17 +317,29 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
           glUniform3fv(glGetUniformLocation(p, "scene_min"), 1, &bounds_min_[0]);
           glUniform3fv(glGetUniformLocation(p, "scene_max"), 1, &bounds_max_[0]);
           // The first four point lights (the Whitted scenes have one or two).
-          std::vector<glm::vec3> positions, intensities;
+          std::vector<glm::vec4> positions;
+          std::vector<glm::vec3> intensities, axes;
+          std::vector<glm::vec2> cones;
           if (textures_source_)
-            for (const point_light& light : textures_source_->lights) {
+            for (const punctual_light& light : textures_source_->lights) {
               if (positions.size() == 4) break;
-              positions.emplace_back(light.position);
+              const bool sun = light.type == light_type::sun;
+              positions.emplace_back(sun ? glm::vec3(-light.direction) : glm::vec3(light.position), sun ? 0.0f : 1.0f);
               intensities.emplace_back(light.intensity);
+              axes.emplace_back(light.direction);
+              // Points and suns: a cone wider than every direction.
+              const double outer = std::cos(light.outer_cone), inner = std::cos(light.inner_cone);
+              cones.push_back(light.type == light_type::spot
+                                  ? glm::vec2(float(outer), float(1.0 / std::max(1e-3, inner - outer)))
+                                  : glm::vec2(-2.0f, 1.0f));
             }
           glUniform1i(glGetUniformLocation(p, "light_count"), GLint(positions.size()));
           if (!positions.empty()) {
-            glUniform3fv(glGetUniformLocation(p, "light_position"), GLsizei(positions.size()), &positions[0][0]);
-            glUniform3fv(glGetUniformLocation(p, "light_intensity"), GLsizei(positions.size()), &intensities[0][0]);
+            const auto n = GLsizei(positions.size());
+            glUniform4fv(glGetUniformLocation(p, "light_position"), n, &positions[0][0]);
+            glUniform3fv(glGetUniformLocation(p, "light_intensity"), n, &intensities[0][0]);
+            glUniform3fv(glGetUniformLocation(p, "light_axis"), n, &axes[0][0]);
+            glUniform2fv(glGetUniformLocation(p, "light_cone"), n, &cones[0][0]);
           }
         }
         used = true;

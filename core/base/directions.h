@@ -37,4 +37,14 @@ inline vec3 sphere_direction(double u1, double u2) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
+// Uniform in the cone of directions within angle acos(cos_max) of the unit
+// axis (solid angle 2 pi (1 - cos_max)).
+inline vec3 cone_direction(const vec3& axis, double cos_max, double u1, double u2) {
+  vec3 t, b;
+  orthonormal_basis(axis, t, b);
+  const double z = 1.0 - u1 * (1.0 - cos_max), r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = 2.0 * std::numbers::pi * u2;
+  return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + z * axis);
+}
+
 }  // namespace bounce

@@ -19,6 +19,7 @@
 #include "image/tonemap.h"
 #include "mesh/coplanar_cut.h"
 #include "mesh/plane_pieces.h"
+#include "scene/lights.h"
 
 namespace bounce {
 namespace {
@@ -172,14 +173,16 @@ bool convex_occluder(const triangle_mesh& m, const std::vector<int>& part, doubl
 // and point lights among them are left out.
 // parts_of(s): surface s's connected parts.
 std::vector<light_shape> strong_lights(const std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
-                                       const std::vector<material>& materials, const std::vector<point_light>& points,
+                                       const std::vector<material>& materials,
+                                       const std::vector<punctual_light>& points, double scene_diagonal,
                                        auto&& parts_of) {
   std::vector<light_shape> all;
-  // A point light's shadow edge is a jump in radiance, not in its slope: a
-  // vertex on it would need a value for each side. Point lights count in
-  // the power but are not outlined (they keep no corners).
-  for (const point_light& l : points)
-    all.push_back({{}, vec3(0.0), 4.0 * std::numbers::pi * luminance(l.intensity), 0.0});
+  // A punctual light's shadow edge is a jump in radiance, not in its slope:
+  // a vertex on it would need a value for each side. Punctual lights count
+  // in the power (a sun's: what reaches the scene's ball) but are not
+  // outlined (they keep no corners).
+  for (const punctual_light& l : points)
+    all.push_back({{}, vec3(0.0), luminance(emitted_power(l, 0.5 * scene_diagonal)), 0.0});
   for (std::size_t s = 0; s < tessellated.size(); ++s) {
     const triangle_mesh& m = tessellated[s];
     const bool has_emitter = std::any_of(m.materials.begin(), m.materials.end(), [&](int mat) {
@@ -524,8 +527,9 @@ bool split_triangle(const ClipperLib::Path& own, const ClipperLib::Paths& umb, c
 }  // namespace
 
 shadow_outline_stats cut_shadow_outlines(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
-                                         const std::vector<material>& materials, const std::vector<point_light>& lights,
-                                         double scene_diagonal, double element_edge) {
+                                         const std::vector<material>& materials,
+                                         const std::vector<punctual_light>& lights, double scene_diagonal,
+                                         double element_edge) {
   shadow_outline_stats stats;
   // Each surface's connected parts, found once (for the lights, then for
   // the occluders) and only if some light is strong.
@@ -538,7 +542,7 @@ shadow_outline_stats cut_shadow_outlines(std::vector<triangle_mesh>& tessellated
     }
     return parts[s];
   };
-  const std::vector<light_shape> strong = strong_lights(tessellated, flat, materials, lights, parts_of);
+  const std::vector<light_shape> strong = strong_lights(tessellated, flat, materials, lights, scene_diagonal, parts_of);
   if (strong.empty()) return stats;
   stats.lights = strong.size();
   const double tolerance = coplanar_relative_tolerance * scene_diagonal;

@@ -56,7 +56,8 @@ struct shadow_outline_stats {
 // those with flat[i] receive) along the shadow outlines of the strong
 // lights: emitting flat surfaces and point lights.
 shadow_outline_stats cut_shadow_outlines(std::vector<triangle_mesh>& tessellated, const std::vector<bool>& flat,
-                                         const std::vector<material>& materials, const std::vector<point_light>& lights,
-                                         double scene_diagonal, double smallest_shadow);
+                                         const std::vector<material>& materials,
+                                         const std::vector<punctual_light>& lights, double scene_diagonal,
+                                         double smallest_shadow);
 
 }  // namespace bounce

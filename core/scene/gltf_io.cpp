@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -596,6 +597,53 @@ struct gltf_reader {
     result.surfaces.push_back(std::move(surf));
   }
 
+  // KHR_lights_punctual: a node's light, placed by the node's transform
+  // (a light shines down its node's -Z). The extension's units are
+  // photometric (candela for point and spot lights, lux for a sun) and the
+  // numbers are kept as they are: emission is read on the same scale
+  // (docs/scene-format.md).
+  void add_light(int index, const glm::dmat4& world, const std::string& where) {
+    if (index < 0 || index >= int(m.lights.size()))
+      fail(where + ".light",
+           "light " + std::to_string(index) + " does not exist (the file has " + std::to_string(m.lights.size()) + ")");
+    const tinygltf::Light& l = m.lights[std::size_t(index)];
+    const std::string who = "extensions.KHR_lights_punctual." + indexed("lights", std::size_t(index));
+    rgb colour(1.0);
+    if (!l.color.empty()) {
+      if (l.color.size() != 3) fail(who, "color must have 3 numbers");
+      colour = rgb(l.color[0], l.color[1], l.color[2]);
+    }
+    if (!glm::all(glm::greaterThanEqual(colour, rgb(0.0))) || !std::isfinite(channel_sum(colour)) ||
+        !(l.intensity >= 0.0) || !std::isfinite(l.intensity))
+      fail(who, "color and intensity must be finite and >= 0");
+    punctual_light light;
+    light.intensity = colour * l.intensity;
+    light.position = vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    const vec3 axis = vec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
+    if (l.type == "spot" || l.type == "directional") {
+      if (!(glm::length(axis) > 0.0) || !std::isfinite(glm::length(axis)))
+        fail(where, "the node's transform gives its light no direction");
+      light.direction = glm::normalize(axis);
+    }
+    if (l.type == "spot") {
+      light.type = light_type::spot;
+      light.inner_cone = l.spot.innerConeAngle;
+      light.outer_cone = l.spot.outerConeAngle;
+      if (!(light.inner_cone >= 0.0 && light.inner_cone < light.outer_cone &&
+            light.outer_cone <= 0.5 * std::numbers::pi))
+        fail(who, "spot cone angles need 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    } else if (l.type == "directional") {
+      light.type = light_type::sun;
+    } else if (l.type != "point") {
+      fail(who, "type '" + l.type + "' is not point, spot or directional");
+    }
+    if (l.range > 0.0)
+      warn_once("light range", who +
+                                   ": range ignored (and on every other light): light falls off as 1/d^2 "
+                                   "to any distance, as the extension allows");
+    result.lights.push_back(light);
+  }
+
   void visit(int node, const glm::dmat4& parent, std::vector<int>& path_to, const std::string& where) {
     if (node < 0 || node >= int(m.nodes.size()))
       fail(where,
@@ -616,6 +664,11 @@ struct gltf_reader {
       if (name.empty()) name = at;
       add_instance(n.mesh, world, name, at);
     }
+    if (auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end()) {
+      const std::string where = at + ".extensions.KHR_lights_punctual";
+      if (!it->second.Has("light") || !it->second.Get("light").IsNumber()) fail(where, "needs a 'light' index");
+      add_light(it->second.Get("light").GetNumberAsInt(), world, where);
+    }
     path_to.push_back(node);
     for (std::size_t c = 0; c < n.children.size(); ++c)
       visit(n.children[c], world, path_to, at + "." + indexed("children", c));
@@ -623,7 +676,8 @@ struct gltf_reader {
   }
 
   void read() {
-    static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+    static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_mesh_quantization",
+                                                    "KHR_lights_punctual"};
     // Extensions whose geometry Bounce cannot read: ignoring them would
     // give garbage, not an approximation.
     static const std::set<std::string> unreadable = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
@@ -631,13 +685,8 @@ struct gltf_reader {
       if (unreadable.count(e)) fail("extensionsRequired", "'" + e + "' (compressed geometry) is not supported");
     for (const std::string& e : m.extensionsUsed) {
       if (supported.count(e)) continue;
-      if (e == "KHR_lights_punctual")
-        warn_once(e, "lights (KHR_lights_punctual) ignored: only emissive materials give light");
-      else
-        warn_once(e, "extension '" + e + "' is not supported; ignored");
+      warn_once(e, "extension '" + e + "' is not supported; ignored");
     }
-    if (!m.lights.empty())
-      warn_once("KHR_lights_punctual", "lights (KHR_lights_punctual) ignored: only emissive materials give light");
     if (!m.cameras.empty()) warn_once("camera", "cameras ignored: the camera is fitted to the geometry");
     if (!m.animations.empty()) warn_once("animation", "animations ignored: the scene is read at rest");
 

@@ -20,16 +20,16 @@ inline constexpr double gltf_mirror_metallic = 0.5;
 inline constexpr double gltf_mirror_roughness = 0.25;
 
 struct gltf_read_result {
-  std::vector<surface> surfaces;  // one polygon mesh per node that holds a mesh
+  std::vector<surface> surfaces;       // one polygon mesh per node that holds a mesh
+  std::vector<punctual_light> lights;  // KHR_lights_punctual, placed by their nodes
   std::vector<std::string> warnings;
 };
 
 // Reads `path` (the scene's default scene, or scene 0): triangles with
 // their node transforms applied, base colour as rho (texture included),
-// smooth metals as mirrors, emission as ke. New materials and textures are appended to the lists and
-// faces refer to them by index. What Bounce cannot use (metallic,
-// roughness, normal maps, cameras, lights, animation, ...) gets one warning
-// per kind. Throws load_error.
+// smooth metals as mirrors, emission as ke, KHR_lights_punctual lights. New materials and textures are appended to the
+// lists and faces refer to them by index. What Bounce cannot use (metallic, roughness, normal maps, cameras, animation,
+// ...) gets one warning per kind. Throws load_error.
 gltf_read_result read_gltf(const std::string& path, std::vector<material>& materials, std::vector<texture>& textures);
 
 }  // namespace bounce

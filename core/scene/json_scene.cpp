@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <numbers>
 #include <optional>
 
 #include "scene/framing.h"
@@ -270,6 +271,53 @@ struct scene_builder {
     s.surfaces.push_back(std::move(surf));
   }
 
+  // {"position", "intensity"} (a point light), with "type": "spot" also
+  // "direction" and the cones' half-angles "inner_cone_degrees" and
+  // "outer_cone_degrees" (glTF's defaults 0 and 45); {"type": "sun",
+  // "direction", "irradiance"}.
+  punctual_light read_light(const json& l, const std::string& where) {
+    punctual_light light;
+    const std::string type = l.contains("type") ? r.string(l["type"], where + ".type") : "point";
+    auto need = [&](std::initializer_list<const char*> keys) {
+      for (const char* k : keys)
+        if (!l.contains(k)) r.fail(where, std::string("a ") + type + " light needs '" + k + "'");
+    };
+    auto direction = [&] {
+      const vec3 d = r.vec<3>(l["direction"], where + ".direction");
+      if (!(glm::length(d) > 0.0) || !std::isfinite(glm::length(d)))
+        r.fail(where + ".direction", "must be a finite, non-zero vector");
+      return glm::normalize(d);
+    };
+    if (type == "point") {
+      r.only_keys(l, where, {"type", "position", "intensity"});
+      need({"position", "intensity"});
+    } else if (type == "spot") {
+      r.only_keys(l, where, {"type", "position", "intensity", "direction", "inner_cone_degrees", "outer_cone_degrees"});
+      need({"position", "intensity", "direction"});
+      light.type = light_type::spot;
+      light.direction = direction();
+      const double degree = std::numbers::pi / 180.0;
+      if (l.contains("inner_cone_degrees"))
+        light.inner_cone = r.number(l["inner_cone_degrees"], where + ".inner_cone_degrees") * degree;
+      if (l.contains("outer_cone_degrees"))
+        light.outer_cone = r.number(l["outer_cone_degrees"], where + ".outer_cone_degrees") * degree;
+      if (!(light.inner_cone >= 0.0 && light.inner_cone < light.outer_cone && light.outer_cone <= 90.0 * degree))
+        r.fail(where, "spot cones need 0 <= inner_cone_degrees < outer_cone_degrees <= 90");
+    } else if (type == "sun") {
+      r.only_keys(l, where, {"type", "direction", "irradiance"});
+      need({"direction", "irradiance"});
+      light.type = light_type::sun;
+      light.direction = direction();
+      light.intensity = r.vec<3>(l["irradiance"], where + ".irradiance");
+      return light;
+    } else {
+      r.fail(where + ".type", "'" + type + "' is not a light type (point, spot or sun)");
+    }
+    light.position = r.vec<3>(l["position"], where + ".position");
+    light.intensity = r.vec<3>(l["intensity"], where + ".intensity");
+    return light;
+  }
+
   void read(const json& doc) {
     r.only_keys(doc, "scene", {"camera", "background", "sky", "textures", "materials", "surfaces", "lights"});
     std::map<std::string, int> texture_by_name;
@@ -294,12 +342,7 @@ struct scene_builder {
     if (doc.contains("lights")) {
       if (!doc["lights"].is_array()) r.fail("lights", "must be an array");
       for (std::size_t i = 0; i < doc["lights"].size(); ++i) {
-        const std::string where = "lights[" + std::to_string(i) + "]";
-        const json& l = doc["lights"][i];
-        r.only_keys(l, where, {"position", "intensity"});
-        if (!l.contains("position") || !l.contains("intensity")) r.fail(where, "needs 'position' and 'intensity'");
-        s.lights.push_back(
-            {r.vec<3>(l["position"], where + ".position"), r.vec<3>(l["intensity"], where + ".intensity")});
+        s.lights.push_back(read_light(doc["lights"][i], "lights[" + std::to_string(i) + "]"));
       }
     }
     if (doc.contains("background")) s.background = r.vec<3>(doc["background"], "background");

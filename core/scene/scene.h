@@ -117,10 +117,22 @@ struct camera {
   int height = 512;
 };
 
-// A point light of the classic Whitted scenes: radiant intensity in W/sr.
-struct point_light {
-  vec3 position{0.0};
+enum class light_type { point, spot, sun };
+
+// A light without area (the classic Whitted scenes' lamps, glTF's
+// KHR_lights_punctual). point: radiant intensity `intensity` (W/sr) from
+// `position` in every direction. spot: the same within a cone about
+// `direction`, whole inside `inner_cone` and none beyond `outer_cone`
+// (half-angles in radians), with glTF's smooth edge between (lights.h).
+// sun: parallel light travelling along `direction` from beyond the scene,
+// `intensity` being the irradiance (W/m^2) on a surface that faces it.
+struct punctual_light {
+  vec3 position{0.0};  // point and spot only
   rgb intensity{0.0};
+  light_type type = light_type::point;
+  vec3 direction{0.0, -1.0, 0.0};  // unit; spot and sun only
+  double inner_cone = 0.0;
+  double outer_cone = 0.7853981633974483;  // pi / 4, glTF's default
 };
 
 // An environment emitter at infinity around the whole scene: radiance
@@ -139,13 +151,13 @@ struct scene {
   std::vector<material> materials;
   std::vector<texture> textures;
   std::vector<surface> surfaces;
-  std::vector<point_light> lights;
+  std::vector<punctual_light> lights;
   camera view;
   rgb background{0.0};  // radiance of rays that leave the scene, where there is no sky
   sky_light sky;        // off unless the scene has one (or a bare model file has no emitter)
 };
 
-// Light that does not come from the surfaces: point lights or a sky.
+// Light that does not come from the surfaces: punctual lights or a sky.
 inline bool has_lights_beyond_surfaces(const scene& s) {
   return !s.lights.empty() || s.sky.on();
 }

@@ -25,7 +25,8 @@ std::string summarize_scene(const scene& s, double max_edge, scene_summary& out)
   out.surfaces = s.surfaces.size();
   out.materials = s.materials.size();
   out.textures = s.textures.size();
-  out.point_lights = s.lights.size();
+  for (const punctual_light& l : s.lights)
+    ++(l.type == light_type::spot ? out.spot_lights : l.type == light_type::sun ? out.suns : out.point_lights);
   out.sky = s.sky.on();
   out.bounds = scene_bounds(s);
 

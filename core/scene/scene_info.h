@@ -30,6 +30,8 @@ struct scene_summary {
   std::size_t emitting_materials = 0;  // used by some surface
   std::size_t emitting_surfaces = 0;
   std::size_t point_lights = 0;
+  std::size_t spot_lights = 0;
+  std::size_t suns = 0;
   bool sky = false;
   bounds3 bounds;
 };

@@ -148,6 +148,7 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     } else if (ends_with_icase(path, ".gltf") || ends_with_icase(path, ".glb")) {
       gltf_read_result gltf = read_gltf(path, s.materials, s.textures);
       s.surfaces = std::move(gltf.surfaces);
+      s.lights = std::move(gltf.lights);
       report.warnings = std::move(gltf.warnings);
       s.view = fit_camera(s);
     } else if (read_through_assimp(path)) {
@@ -183,7 +184,7 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     if (!has_light_source(s))
       report.warnings.push_back(path +
                                 ": no emitter: no surface has a material with ke > 0 and there is no "
-                                "point light, so nothing lights the scene");
+                                "punctual light, so nothing lights the scene");
     warn_unreachable_emitters(s, report);
   } catch (const load_error& e) {
     report.warnings.insert(report.warnings.end(), e.warnings.begin(), e.warnings.end());

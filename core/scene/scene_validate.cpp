@@ -4,6 +4,7 @@
 // code. Each message names the object at fault.
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <sstream>
 
 namespace bounce {
@@ -160,11 +161,16 @@ std::string validate_scene(const scene& s) {
   for (const surface& surf : s.surfaces)
     if (std::string e = check_surface(s, surf); !e.empty()) return e;
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
-    const point_light& l = s.lights[i];
+    const punctual_light& l = s.lights[i];
     std::string who = "lights[" + std::to_string(i) + "]: ";
     if (!in_range(l.position)) return who + "position is not finite";
     if (!finite(l.intensity) || glm::any(glm::lessThan(l.intensity, vec3(0.0))))
       return who + "intensity must be finite and >= 0";
+    if (l.type != light_type::point && !(in_range(l.direction) && std::abs(glm::length(l.direction) - 1.0) < 1e-6))
+      return who + "direction must be a finite unit vector";
+    if (l.type == light_type::spot &&
+        !(l.inner_cone >= 0.0 && l.inner_cone < l.outer_cone && l.outer_cone <= 0.5 * std::numbers::pi))
+      return who + "spot cones need 0 <= inner < outer <= 90 degrees";
   }
   if (!finite(s.background) || glm::any(glm::lessThan(s.background, vec3(0.0))))
     return "background must be finite and >= 0";
@@ -186,7 +192,7 @@ std::string validate_scene(const scene& s) {
 
 bool has_light_source(const scene& s) {
   if (s.sky.on()) return true;
-  for (const point_light& l : s.lights)
+  for (const punctual_light& l : s.lights)
     if (glm::any(glm::greaterThan(l.intensity, vec3(0.0)))) return true;
   return has_emitting_surface(s);
 }

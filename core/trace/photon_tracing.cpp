@@ -14,6 +14,8 @@
 #include "base/random_stream.h"
 #include "optics/optics.h"
 #include "optics/specular_event.h"
+#include "scene/framing.h"
+#include "scene/lights.h"
 #include "scene/texture.h"
 
 namespace bounce {
@@ -67,7 +69,7 @@ struct source {
   int light = -1;  // index into scene::lights, or -1 for all the area emitters together
   long first = 0;  // index of its first photon
   long count = 0;
-  rgb power{0.0};  // point light: each photon's power
+  rgb power{0.0};  // punctual light: a photon's mean power
 };
 
 // One block of photons' share of the result, merged in block order so that
@@ -104,8 +106,8 @@ bool emits(const scene& s, const surface& surf) {
 
 class photon_tracer {
  public:
-  photon_tracer(const scene& s, const ray_scene& rays, const photon_params& p)
-      : s_(s), rays_(rays), p_(p), offset_(rays.surface_offset()) {}
+  photon_tracer(const scene& s, const ray_scene& rays, const photon_params& p, const vec3& centre, double radius)
+      : s_(s), rays_(rays), p_(p), offset_(rays.surface_offset()), centre_(centre), radius_(radius) {}
 
   // Follows photon `index` of `src` and records where it ends.
   void trace(const source& src, long index, block_result& out) const {
@@ -113,9 +115,11 @@ class photon_tracer {
     vec3 origin, d;
     rgb power;
     if (src.light >= 0) {
-      origin = s_.lights[std::size_t(src.light)].position;
-      d = sphere_direction(rng.uniform(), rng.uniform());
-      power = src.power;
+      const double u1 = rng.uniform(), u2 = rng.uniform();
+      const light_photon start = sample_light_photon(s_.lights[std::size_t(src.light)], centre_, radius_, u1, u2);
+      origin = start.origin;
+      d = start.direction;
+      power = src.power * start.weight;
     } else {
       // Stratified over the photons in u1, which sample_emitter carries
       // over to the emitters and the points on them.
@@ -186,6 +190,8 @@ class photon_tracer {
   const ray_scene& rays_;
   photon_params p_;
   double offset_;
+  vec3 centre_;    // of the ball about the scene that a sun's photons start beside
+  double radius_;  // its radius
 };
 
 }  // namespace
@@ -213,8 +219,11 @@ caustic_result caustic_photons(const scene& s, const ray_scene& rays, const phot
       shares.push_back(power);
     }
   }
+  const bounds3 bounds = scene_bounds(s);
+  const vec3 centre = 0.5 * (bounds.min + bounds.max);
+  const double radius = std::max(0.5 * glm::length(bounds.max - bounds.min), 1e-12);
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
-    const double power = 4.0 * pi * channel_mean(s.lights[i].intensity);
+    const double power = channel_mean(emitted_power(s.lights[i], radius));
     if (power <= 0.0) continue;
     sources.push_back({int(i), 0, 0, rgb(0.0)});
     shares.push_back(power);
@@ -236,7 +245,7 @@ caustic_result caustic_photons(const scene& s, const ray_scene& rays, const phot
     share_so_far += shares[k];
     src.first = total;
     src.count = std::max(1L, std::lround(budget * share_so_far / total_share) - before);
-    if (src.light >= 0) src.power = 4.0 * pi * s.lights[std::size_t(src.light)].intensity / double(src.count);
+    if (src.light >= 0) src.power = emitted_power(s.lights[std::size_t(src.light)], radius) / double(src.count);
     total += src.count;
   }
 
@@ -246,7 +255,7 @@ caustic_result caustic_photons(const scene& s, const ray_scene& rays, const phot
   constexpr long block = 1024;
   const std::size_t blocks = std::size_t((total + block - 1) / block);
   std::vector<block_result> results(blocks);
-  const photon_tracer tracer(s, rays, params);
+  const photon_tracer tracer(s, rays, params, centre, radius);
   for_each_block(params.parallel, blocks, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end && !prog.cancel.load(std::memory_order_relaxed); ++b) {
       const long first = long(b) * block, last = std::min(total, first + block);

@@ -56,8 +56,10 @@ struct caustic_result {
 
 // The caustic photon map of the scene. `rays` is the ray scene of `s`.
 // Photons leave area emitters (uniformly by area, cosine-weighted about the
-// emitting normal: power pi * ke * area in all) and point lights (uniformly
-// over the sphere: power 4 pi I each). Not sources: the sky, and emitting
+// emitting normal: power pi * ke * area in all) and punctual lights
+// (scene/lights.h: a point light over the sphere, power 4 pi I; a spot
+// within its cone; a sun from a disc over the scene's bounding ball, power
+// E pi r^2). Not sources: the sky, and emitting
 // quadrics (counted in stats.skipped_emitters).
 caustic_result caustic_photons(const scene& s, const ray_scene& rays, const photon_params& params,
                                photon_progress* progress = nullptr);

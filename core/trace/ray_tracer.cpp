@@ -21,6 +21,7 @@
 #include "optics/specular_event.h"
 #include "scene/camera_math.h"
 #include "scene/framing.h"
+#include "scene/lights.h"
 #include "scene/sky.h"
 #include "scene/texture.h"
 #include "trace/irradiance_cache.h"
@@ -207,15 +208,14 @@ class tracer {
   void direct_light(const surface_point& sp, const vec3& to_viewer, int samples, random_stream& rng, counters& c,
                     rgb& irradiance, rgb& highlight, double mis_lobe_probability = 0.0) const {
     const vec3 origin = sp.hit.point + offset_ * sp.n_face;
-    for (const point_light& light : s_.lights) {
-      const vec3 to = light.position - sp.hit.point;
-      const double d2 = glm::dot(to, to);
-      const vec3 l = to / std::sqrt(d2);
+    for (const punctual_light& light : s_.lights) {
+      const light_arrival a = light_at(light, sp.hit.point, 4.0 * scene_diagonal_);
+      const vec3 l = a.to_light;
       const double cos_x = glm::dot(sp.n, l);
-      if (cos_x <= 0.0 || glm::dot(sp.n_face, l) <= 0.0) continue;
+      if (cos_x <= 0.0 || glm::dot(sp.n_face, l) <= 0.0 || !any_positive(a.irradiance)) continue;
       ++c.shadow;
-      if (rays_.occluded(origin, light.position)) continue;
-      const rgb e = light.intensity * cos_x / d2;
+      if (rays_.occluded(origin, a.shadow_end)) continue;
+      const rgb e = a.irradiance * cos_x;
       irradiance += e;
       highlight += phong(sp, l, to_viewer) * e;
     }

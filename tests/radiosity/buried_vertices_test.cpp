@@ -83,7 +83,7 @@ TEST(BuriedVertices, TakeTheirNeighboursValuesRoundByRound) {
 // shows no black where a ball passes into the other.
 TEST(BuriedVertices, TheSolversSnapshotHasNoBlackAtTheCrossing) {
   scene s = two_balls();
-  s.lights.push_back(point_light{vec3(0.0, 2.5, 0.0), rgb(20.0)});
+  s.lights.push_back(punctual_light{vec3(0.0, 2.5, 0.0), rgb(20.0)});
   const patch_mesh mesh = mesh_of(s, 0.3);
   radiosity_params params;
   params.method = solver_method::hierarchical;

@@ -406,13 +406,77 @@ TEST(Gltf, IgnoredFeaturesAreWarnedAboutOncePerKind) {
   EXPECT_EQ(count_warnings(report, "metallic and roughness ignored"), 1) << all;
   EXPECT_EQ(count_warnings(report, "normal maps ignored"), 1) << all;
   EXPECT_EQ(count_warnings(report, "cameras ignored"), 1) << all;
-  EXPECT_EQ(count_warnings(report, "KHR_lights_punctual"), 1) << all;
+  EXPECT_EQ(count_warnings(report, "KHR_lights_punctual"), 0) << all;  // read; this one is on no node
+  EXPECT_TRUE(s.lights.empty());
   EXPECT_EQ(count_warnings(report, "'KHR_materials_clearcoat' is not supported"), 1) << all;
   EXPECT_EQ(count_warnings(report, "points and lines have no area"), 1) << all;
   for (const std::string& w : report.warnings) EXPECT_EQ(w.rfind(path + ": ", 0), 0u) << w;
   std::size_t faces = 0;
   for (const surface& surf : s.surfaces) faces += std::get<polygon_mesh>(surf.geometry).faces.size();
   EXPECT_EQ(faces, 4u);
+}
+
+// KHR_lights_punctual: a light shines down its node's -Z, from the node's
+// origin; candela and lux are kept as they are (docs/scene-format.md).
+TEST(Gltf, PunctualLightsArePlacedByTheirNodes) {
+  scratch_dir dir;
+  gltf_file f;
+  f.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  f.doc["extensions"] = {
+      {"KHR_lights_punctual",
+       {{"lights",
+         {{{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 100.0}, {"range", 5.0}},
+          {{"type", "spot"}, {"intensity", 50.0}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+          {{"type", "directional"}, {"intensity", 3.0}}}}}}};
+  const int m = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}});
+  const int quad = f.node({{"mesh", f.mesh({unit_quad(f, m)})}});
+  const double h = std::sqrt(0.5);
+  const json lamp = {{"KHR_lights_punctual", {{"light", 0}}}};
+  const int point = f.node({{"translation", {0, 3, 0}}, {"extensions", lamp}});
+  // Turned -90 degrees about x: -Z becomes -Y, straight down.
+  const int spot = f.node({{"translation", {1, 2, 0}},
+                           {"rotation", {-h, 0, 0, h}},
+                           {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  // A sun under a scaled parent: the direction stays a unit vector.
+  const int sun = f.node({{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+  const int parent = f.node({{"children", {sun}}, {"scale", {2, 2, 2}}});
+  f.roots({quad, point, spot, parent});
+  const std::string path = dir.write("lamps.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  ASSERT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.lights[0].type, light_type::point);
+  EXPECT_EQ(s.lights[0].position, vec3(0, 3, 0));
+  EXPECT_EQ(s.lights[0].intensity, rgb(100, 50, 25));
+  EXPECT_EQ(s.lights[1].type, light_type::spot);
+  EXPECT_EQ(s.lights[1].position, vec3(1, 2, 0));
+  EXPECT_NEAR(glm::length(s.lights[1].direction - vec3(0, -1, 0)), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(s.lights[1].inner_cone, 0.2);
+  EXPECT_DOUBLE_EQ(s.lights[1].outer_cone, 0.5);
+  EXPECT_EQ(s.lights[1].intensity, rgb(50.0));
+  EXPECT_EQ(s.lights[2].type, light_type::sun);
+  EXPECT_NEAR(glm::length(s.lights[2].direction - vec3(0, -1, 0)), 0.0, 1e-12);
+  EXPECT_EQ(s.lights[2].intensity, rgb(3.0));
+  // Lights of its own: no automatic sky.
+  EXPECT_FALSE(s.sky.on());
+  EXPECT_EQ(count_warnings(report, "range ignored"), 1) << ::testing::PrintToString(report.warnings);
+  EXPECT_EQ(count_warnings(report, "white sky"), 0);
+
+  // Broken lights are named.
+  gltf_file bad = f;
+  bad.doc["nodes"][point]["extensions"]["KHR_lights_punctual"]["light"] = 7;
+  EXPECT_NE(error_of(dir.write("index.gltf", bad.gltf_text()))
+                .find("nodes[1].extensions.KHR_lights_punctual.light: light 7 does not exist (the file has 3)"),
+            std::string::npos);
+  bad = f;
+  bad.doc["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"]["innerConeAngle"] = 0.6;
+  EXPECT_NE(error_of(dir.write("cone.gltf", bad.gltf_text())).find("KHR_lights_punctual.lights[1]: spot cone"),
+            std::string::npos);
+  bad = f;
+  bad.doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = -1;
+  EXPECT_NE(error_of(dir.write("negative.gltf", bad.gltf_text())).find("lights[0]: color and intensity"),
+            std::string::npos);
 }
 
 // ---- bad files -----------------------------------------------------------

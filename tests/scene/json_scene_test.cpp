@@ -2,6 +2,7 @@
 // reads it: a round trip of every construct, and bad input that must fail
 // with a message naming the file and the value's path inside it, or the
 // line and column of a syntax error.
+#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -126,6 +127,37 @@ TEST(JsonSceneBadInput, UndecodableTexture) {
   std::string e = load_error_of(path);
   EXPECT_NE(e.find("cannot decode texture"), std::string::npos) << e;
   EXPECT_NE(e.find("textures.t"), std::string::npos) << e;
+}
+
+TEST(JsonScene, SpotAndSunLights) {
+  scratch_dir dir;
+  const std::string path =
+      dir.write("lamps.json", json_scene(R"({"sphere": {"center": [0,0,0], "radius": 1}, "material": "white"})", R"(,
+    "lights": [{"type": "spot", "position": [0, 4, 0], "intensity": [2, 2, 2], "direction": [0, -2, 0],
+                "inner_cone_degrees": 10, "outer_cone_degrees": 20},
+               {"type": "sun", "direction": [1, -1, 0], "irradiance": [3, 3, 3]}])"));
+  const scene s = load_ok(path);
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, light_type::spot);
+  EXPECT_EQ(s.lights[0].direction, vec3(0, -1, 0));
+  EXPECT_NEAR(s.lights[0].inner_cone, 10 * std::numbers::pi / 180, 1e-15);
+  EXPECT_NEAR(s.lights[0].outer_cone, 20 * std::numbers::pi / 180, 1e-15);
+  EXPECT_EQ(s.lights[1].type, light_type::sun);
+  EXPECT_NEAR(s.lights[1].direction.x, std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(s.lights[1].intensity, rgb(3.0));
+  const std::string ball = R"({"sphere": {"center": [0,0,0], "radius": 1}, "material": "white"})";
+  for (const auto& [light, message] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"type": "spot", "position": [0, 4, 0], "intensity": [1, 1, 1]})", "a spot light needs 'direction'"},
+           {R"({"type": "spot", "position": [0, 4, 0], "intensity": [1, 1, 1], "direction": [0, -1, 0],
+               "inner_cone_degrees": 30, "outer_cone_degrees": 20})",
+            "spot cones need"},
+           {R"({"type": "sun", "direction": [0, 0, 0], "irradiance": [1, 1, 1]})", "lights[0].direction: must be"},
+           {R"({"type": "sun", "direction": [0, -1, 0], "intensity": [1, 1, 1]})", "unknown key 'intensity'"},
+           {R"({"type": "area", "position": [0, 4, 0]})", "lights[0].type: 'area' is not a light type"}}) {
+    const std::string bad = dir.write("bad.json", json_scene(ball, ", \"lights\": [" + light + "]"));
+    const std::string e = load_error_of(bad);
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+  }
 }
 
 // ---- h3: numbers in JSON scenes, messages that name the place ----

@@ -10,6 +10,7 @@
 #include "radiosity/hierarchical/oracle.h"
 #include "radiosity/hierarchical/transport.h"
 #include "radiosity/transfer/form_factor.h"
+#include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/point_lights.h"
 
 namespace bounce {
@@ -295,9 +296,12 @@ bool final_gather(hierarchical_solver& solver) {
           solver.progress.closed ? closed_scale_for(emitted.factors, plain.factors) : closed_scale{};
       const rgb rho = mesh.vertex_rho[v];
       const rgb lamp = lamps ? point_light_irradiance(s, solver.context, p, normal, lamp_rays) : rgb(0.0);
-      out.total[v] = rho * (plain.b * scale.rest + emitted.b * scale.emitters + mirrored + lamp);
+      const std::vector<light_image>& images = solver.sources.light_images;
+      const rgb lamp_images =
+          images.empty() ? rgb(0.0) : mirrored_light_irradiance(solver.context, images, p, normal, lamp_rays);
+      out.total[v] = rho * (plain.b * scale.rest + emitted.b * scale.emitters + mirrored + lamp + lamp_images);
       out.direct[v] = rho * (plain.e * scale.rest + emitted.e * scale.emitters + lamp);
-      out.mirrored[v] = rho * mirrored_direct;
+      out.mirrored[v] = rho * (mirrored_direct + lamp_images);
     }
     evaluations += count;
     rays += lamp_rays;

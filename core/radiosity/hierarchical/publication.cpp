@@ -57,16 +57,22 @@ vertex_light publish_vertex_light(hierarchical_solver& h) {
   // The lights' light through mirrors and glass enters B as a
   // right-hand-side term, and through the links through mirrors: B's
   // caustic part is that term plus what those links bring from the emitters.
-  if (!src.specular_lamp_input.empty() || !h.hierarchy.mirror_links.empty()) {
+  if (!src.specular_lamp_input.empty() || !h.hierarchy.mirror_links.empty() || !src.mirrored_lamp.empty()) {
     std::vector<rgb> caustic(mesh.element_count(), rgb(0.0));
     if (!src.specular_lamp_input.empty())
       for (std::size_t e = 0; e < caustic.size(); ++e)
         caustic[e] = src.specular_lamp_input[std::size_t(h.meshes.input_element[e])];
+    // Per element, what the gather finds at the vertices: the links
+    // through mirrors and the lights seen in mirrors.
+    std::vector<rgb> mirrored(mesh.element_count(), rgb(0.0));
+    for (std::size_t e = 0; e < mirrored.size() && e < h.light.mirrored.size(); ++e) mirrored[e] = h.light.mirrored[e];
+    for (std::size_t e = 0; e < mirrored.size() && e < src.mirrored_lamp.size(); ++e)
+      mirrored[e] += src.mirrored_lamp[e];
     std::vector<rgb> mirrored_per_vertex;
     if (!gathered)
-      for (std::size_t e = 0; e < caustic.size() && e < h.light.mirrored.size(); ++e) caustic[e] += h.light.mirrored[e];
-    else if (!everywhere && h.light.mirrored.size() == caustic.size())
-      mirrored_per_vertex = element_to_vertex(mesh, h.light.mirrored);
+      for (std::size_t e = 0; e < caustic.size(); ++e) caustic[e] += mirrored[e];
+    else if (!everywhere)
+      mirrored_per_vertex = element_to_vertex(mesh, mirrored);
     out.caustic = element_to_vertex(mesh, caustic);
     if (gathered)
       for (std::size_t v = 0; v < out.caustic.size(); ++v)

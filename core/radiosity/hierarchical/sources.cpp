@@ -1,6 +1,7 @@
 #include "radiosity/hierarchical/sources.h"
 
 #include "base/check.h"
+#include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/point_lights.h"
 
 namespace bounce {
@@ -32,13 +33,21 @@ void rebuild_for_mesh(hierarchical_solver& solver, cluster_tree tree) {
   src.lamp.assign(n, rgb(0.0));
   h.normalizer.assign(n, closed_scale{});
   BOUNCE_CHECK(src.specular_lamp.empty() || src.specular_lamp.size() == n);
+  src.light_images = solver.context.mirrors
+                         ? light_images(s, *solver.context.mirrors, solver.context.params.mirror_depth)
+                         : std::vector<light_image>();
+  src.mirrored_lamp.assign(src.light_images.empty() ? 0 : n, rgb(0.0));
   std::uint64_t rays = 0;
   for (std::size_t e = 0; e < n; ++e) {
     h.rho[e] = element_mean(mesh, mesh.vertex_rho, e);
     src.emission[e] = element_mean(mesh, mesh.vertex_emission, e);
-    if (has_lights_beyond_surfaces(s)) {
-      const cluster_node& leaf = h.tree.nodes[std::size_t(h.tree.leaf_of_element[e])];
+    const cluster_node& leaf = h.tree.nodes[std::size_t(h.tree.leaf_of_element[e])];
+    if (has_lights_beyond_surfaces(s))
       src.lamp[e] = h.rho[e] * point_light_irradiance(s, solver.context, leaf.centroid, leaf.normal, rays);
+    if (!src.light_images.empty()) {
+      src.mirrored_lamp[e] =
+          h.rho[e] * mirrored_light_irradiance(solver.context, src.light_images, leaf.centroid, leaf.normal, rays);
+      src.lamp[e] += src.mirrored_lamp[e];
     }
     if (!src.specular_lamp.empty()) src.lamp[e] += src.specular_lamp[e];
   }
@@ -57,7 +66,10 @@ std::vector<rgb> right_hand_side(const hierarchical_solver& solver) {
 
 rgb direct_lamp(const hierarchical_solver& solver, std::size_t e) {
   const element_sources& src = solver.sources;
-  return src.specular_lamp.empty() ? src.lamp[e] : src.lamp[e] - src.specular_lamp[e];
+  rgb direct = src.lamp[e];
+  if (!src.specular_lamp.empty()) direct -= src.specular_lamp[e];
+  if (!src.mirrored_lamp.empty()) direct -= src.mirrored_lamp[e];
+  return direct;
 }
 
 }  // namespace bounce

@@ -71,7 +71,7 @@ std::vector<rgb> specular_lamp_of(const hierarchical_solver& solver, std::uint64
   if (!surfaces && !solver.context.mirrors) return {};
   const form_factor_context context = input_context(solver);
   return vertex_to_element(*solver.meshes.input, specular_light_from_sources(s, context, surfaces.get(), rays,
-                                                                             solver.hierarchy.chains.empty()));
+                                                                             solver.hierarchy.chains.empty(), false));
 }
 
 bool specular_passes_done(const hierarchical_solver& solver) {

@@ -23,6 +23,7 @@
 #include "radiosity/hierarchical/mirror_chains.h"
 #include "radiosity/hierarchical/params.h"
 #include "radiosity/transfer/form_factor.h"
+#include "radiosity/transfer/mirror_images.h"
 
 namespace bounce {
 
@@ -76,6 +77,11 @@ struct element_sources {
   // part per element of the input mesh.
   std::vector<rgb> specular_lamp;
   std::vector<rgb> specular_lamp_input;
+  // The punctual lights seen in planar mirrors: their images, and the part
+  // of lamp they give, found at each element like the lights' direct light
+  // (and at the vertices by the final gather). Empty without mirrors.
+  std::vector<light_image> light_images;
+  std::vector<rgb> mirrored_lamp;
   double emitted_power = 0.0;     // channel sum of the right-hand side x area
   bool has_path_targets = false;  // curved mirrors or glass: the passes have paths to trace
 };

@@ -68,7 +68,7 @@ void trace_source(progressive_state& state, const specular_source& source, std::
   }
 }
 
-// What the point lights give by way of mirrors and glass, per vertex.
+// What the punctual lights give by way of mirrors and glass, per vertex.
 std::vector<rgb> specular_light_of_lights(progressive_state& state) {
   const patch_mesh& mesh = *state.mesh;
   std::vector<rgb> extra(mesh.vertex_count(), rgb(0.0));
@@ -77,10 +77,9 @@ std::vector<rgb> specular_light_of_lights(progressive_state& state) {
     extra = mirrored_point_light_radiosity(*state.source, mesh, state.form_factors,
                                            state.params.form_factors.mirror_depth, state.stats.rays);
   if (state.specular)
-    for (const point_light& light : state.source->lights) {
+    for (const punctual_light& light : state.source->lights) {
       specular_source source;
-      source.position = light.position;
-      source.intensity = light.intensity;
+      source.light = &light;
       trace_source(state, source, extra);
     }
   return extra;
@@ -185,7 +184,7 @@ void shoot_patch(progressive_state& state, std::size_t patch) {
 }  // namespace
 
 std::unique_ptr<progressive_state> make_progressive_state(const scene& s, const patch_mesh& mesh,
-                                                      const progressive_params& params) {
+                                                          const progressive_params& params) {
   check_mesh_contract(mesh);
   auto state = std::make_unique<progressive_state>();
   state->mesh = &mesh;
@@ -270,7 +269,7 @@ bool same_triangle(const std::array<vec3, 3>& a, const std::array<vec3, 3>& b) {
 }  // namespace
 
 bool refine_progressive(progressive_state& state, std::span<const int> marked, double min_edge, std::string& error,
-                      std::size_t* new_vertices) {
+                        std::size_t* new_vertices) {
   const patch_mesh& old = *state.mesh;
   auto refined = std::make_shared<patch_mesh>(old);
   std::vector<int> origin;

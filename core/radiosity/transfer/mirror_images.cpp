@@ -7,6 +7,7 @@
 
 #include "base/parallel.h"
 #include "radiosity/transfer/occlusion.h"
+#include "scene/lights.h"
 
 namespace bounce {
 namespace {
@@ -70,14 +71,18 @@ struct image_search {
     }
   }
 
-  void extend(const point_image& p, std::vector<point_image>& out) const {
+  void extend(const light_image& p, std::vector<light_image>& out) const {
     if (p.through.count >= depth) return;
     const int last = p.through.count > 0 ? p.through.mirrors[0] : -1;
     for (int m = 0; m < int(set.mirrors.size()); ++m) {
       if (m == last) continue;
       const planar_mirror& mirror = set.mirrors[std::size_t(m)];
-      if (!in_front(mirror, std::span(&p.position, 1))) continue;
-      const point_image image{mirror.reflect_point(p.position), prepend(p.through, m, mirror.kr)};
+      const bool lit = p.light.type == light_type::sun ? glm::dot(mirror.normal, p.light.direction) < 0.0
+                                                       : in_front(mirror, std::span(&p.light.position, 1));
+      if (!lit) continue;
+      light_image image{p.light, prepend(p.through, m, mirror.kr)};
+      image.light.position = mirror.reflect_point(p.light.position);
+      image.light.direction = mirror.reflect_direction(p.light.direction);
       out.push_back(image);
       extend(image, out);
     }
@@ -160,10 +165,10 @@ std::vector<shooter> mirror_images(const mirror_set& mirrors, const shooter& fro
   return out;
 }
 
-std::vector<point_image> mirror_images(const mirror_set& mirrors, const vec3& point, int depth) {
-  std::vector<point_image> out;
+std::vector<light_image> mirror_images(const mirror_set& mirrors, const punctual_light& light, int depth) {
+  std::vector<light_image> out;
   const image_search search{mirrors, std::clamp(depth, 0, max_mirror_depth), mirrors.tolerance};
-  search.extend(point_image{point, {}}, out);
+  search.extend(light_image{light, {}}, out);
   return out;
 }
 
@@ -184,37 +189,46 @@ bool visible_through_mirrors(const form_factor_context& context, const mirror_pa
   return !context.occlusion->occluded(a, target);
 }
 
+std::vector<light_image> light_images(const scene& s, const mirror_set& mirrors, int depth) {
+  std::vector<light_image> images;
+  for (const punctual_light& light : s.lights) {
+    const std::vector<light_image> of_light = mirror_images(mirrors, light, depth);
+    images.insert(images.end(), of_light.begin(), of_light.end());
+  }
+  return images;
+}
+
+rgb mirrored_light_irradiance(const form_factor_context& context, const std::vector<light_image>& images, const vec3& p,
+                              const vec3& n, std::uint64_t& rays) {
+  // A sun's image: the shadow ray ends beyond the scene, 4 diagonals off,
+  // so it crosses the mirror's plane as the light does.
+  const double far = 4.0 * std::max(context.mesh->scene_diagonal, 1e-12);
+  rgb irradiance(0.0);
+  for (const light_image& im : images) {
+    const light_arrival a = light_at(im.light, p, far);
+    const double cosine = glm::dot(n, a.to_light);
+    if (!(cosine > 0.0) || !any_positive(a.irradiance)) continue;
+    rays += std::uint64_t(im.through.count + 1);
+    if (!visible_through_mirrors(context, im.through, p + n * context.offset, a.shadow_end)) continue;
+    irradiance += im.through.kr * a.irradiance * cosine;
+  }
+  return irradiance;
+}
+
 std::vector<rgb> mirrored_point_light_radiosity(const scene& s, const patch_mesh& mesh,
                                                 const form_factor_context& context, int depth, std::uint64_t& rays,
                                                 std::size_t first) {
   std::vector<rgb> out(mesh.vertex_count(), rgb(0.0));
   if (!context.mirrors || depth <= 0) return out;
-  struct image {
-    point_image at;
-    rgb intensity;
-  };
-  std::vector<image> images;
-  for (const point_light& light : s.lights)
-    for (const point_image& p : mirror_images(*context.mirrors, light.position, depth))
-      images.push_back({p, light.intensity * p.through.kr});
+  const std::vector<light_image> images = light_images(s, *context.mirrors, depth);
   if (images.empty()) return out;
   std::atomic<std::uint64_t> cast{0};
   auto light_vertices = [&](std::size_t begin, std::size_t end) {
     std::uint64_t local = 0;
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t v = first + i;
-      const vec3 p = mesh.receive_points[v], n = mesh.normals[v];
-      rgb irradiance(0.0);
-      for (const image& im : images) {
-        const vec3 to_light = im.at.position - p;
-        const double r2 = glm::dot(to_light, to_light);
-        const double cosine = glm::dot(n, to_light) / std::sqrt(r2);
-        if (!(cosine > 0.0)) continue;
-        local += std::uint64_t(im.at.through.count + 1);
-        if (!visible_through_mirrors(context, im.at.through, p + n * context.offset, im.at.position)) continue;
-        irradiance += im.intensity * (cosine / r2);
-      }
-      out[v] = mesh.vertex_rho[v] * irradiance;
+      out[v] = mesh.vertex_rho[v] *
+               mirrored_light_irradiance(context, images, mesh.receive_points[v], mesh.normals[v], local);
     }
     cast += local;
   };

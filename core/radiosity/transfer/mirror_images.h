@@ -61,12 +61,23 @@ std::shared_ptr<const mirror_set> find_planar_mirrors(const scene& s, const patc
 // Each image carries its path (receiver's side first) and kr product.
 std::vector<shooter> mirror_images(const mirror_set& mirrors, const shooter& from, int depth);
 
-// The images of a point (a point light) the same way: positions and paths.
-struct point_image {
-  vec3 position{0.0};
+// The images of a punctual light the same way: the light reflected (its
+// position and direction) with its path. A point or spot must lie in front
+// of the mirror; a sun must shine on the mirror's front.
+struct light_image {
+  punctual_light light;
   mirror_path through;
 };
-std::vector<point_image> mirror_images(const mirror_set& mirrors, const vec3& point, int depth);
+std::vector<light_image> mirror_images(const mirror_set& mirrors, const punctual_light& light, int depth);
+
+// The images of all the scene's punctual lights.
+std::vector<light_image> light_images(const scene& s, const mirror_set& mirrors, int depth);
+
+// Irradiance the images give a point p facing n: kr I cos / r^2 from each
+// (kr E cos from a sun's), with shadow rays through the mirrors. Adds the
+// rays cast to `rays`.
+rgb mirrored_light_irradiance(const form_factor_context& context, const std::vector<light_image>& images, const vec3& p,
+                              const vec3& n, std::uint64_t& rays);
 
 // Whether light runs from `to`, a point on an image (lifted off it), to
 // `from`, a receiving point (lifted off its surface), by way of the path's
@@ -75,8 +86,9 @@ std::vector<point_image> mirror_images(const mirror_set& mirrors, const vec3& po
 bool visible_through_mirrors(const form_factor_context& context, const mirror_path& path, const vec3& from,
                              const vec3& to);
 
-// Radiosity each vertex (from `first` on) reflects of the point lights
-// seen in the mirrors: rho kr I cos / r^2 from each image. Adds the rays
+// Radiosity each vertex (from `first` on) reflects of the punctual lights
+// seen in the mirrors: rho kr I cos / r^2 from each image (rho kr E cos
+// from a sun's). Adds the rays
 // cast to `rays`.
 std::vector<rgb> mirrored_point_light_radiosity(const scene& s, const patch_mesh& mesh,
                                                 const form_factor_context& context, int depth, std::uint64_t& rays,

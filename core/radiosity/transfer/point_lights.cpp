@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "base/parallel.h"
+#include "scene/lights.h"
 #include "scene/sky.h"
 
 namespace bounce {
@@ -36,14 +37,14 @@ rgb sky_irradiance(const scene& s, const form_factor_context& context, const vec
 rgb point_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
                            std::uint64_t& rays) {
   rgb irradiance = s.sky.on() ? sky_irradiance(s, context, p, n, rays) : rgb(0.0);
-  for (const point_light& light : s.lights) {
-    const vec3 to_light = light.position - p;
-    const double r2 = glm::dot(to_light, to_light);
-    const double cosine = glm::dot(n, to_light) / std::sqrt(r2);
-    if (!(cosine > 0.0)) continue;
+  const double far = 4.0 * std::max(context.mesh->scene_diagonal, 1e-12);
+  for (const punctual_light& light : s.lights) {
+    const light_arrival a = light_at(light, p, far);
+    const double cosine = glm::dot(n, a.to_light);
+    if (!(cosine > 0.0) || !any_positive(a.irradiance)) continue;
     ++rays;
-    if (!visible(context, p, n, light.position, vec3(0.0))) continue;
-    irradiance += light.intensity * (cosine / r2);  // I cos / r^2
+    if (!visible(context, p, n, a.shadow_end, vec3(0.0))) continue;
+    irradiance += a.irradiance * cosine;  // I share cos / r^2, or E cos for a sun
   }
   return irradiance;
 }

@@ -1,5 +1,6 @@
 // Direct light that does not come from the surfaces, with shadow rays:
-// point lights (B = rho * I cos / r^2) and the sky (64 stratified,
+// punctual lights (B = rho * I cos / r^2 for points and spots, with the
+// spot's cone; rho * E cos for a sun) and the sky (64 stratified,
 // cosine-weighted rays to it). What all solvers take as its contribution.
 #pragma once
 
@@ -11,7 +12,7 @@
 
 namespace bounce {
 
-// Irradiance the point lights and the sky give a point facing `n` (shadow
+// Irradiance the punctual lights and the sky give a point facing `n` (shadow
 // rays included); counts the rays cast in `rays`.
 rgb point_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
                            std::uint64_t& rays);

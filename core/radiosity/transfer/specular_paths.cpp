@@ -9,6 +9,7 @@
 #include "optics/specular_event.h"
 #include "radiosity/transfer/mirror_images.h"
 #include "radiosity/transfer/occlusion.h"
+#include "scene/lights.h"
 
 namespace bounce {
 namespace {
@@ -170,7 +171,8 @@ std::uint64_t send_paths(const scene& s, const form_factor_context& context, con
   if (count <= 0 || targets.empty()) return 0;
   const shooter* from = source.from;
   const double tolerance = 1e-9 * mesh.scene_diagonal;
-  const vec3 centre = from ? (from->corners[0] + from->corners[1] + from->corners[2]) / 3.0 : source.position;
+  const double far = 4.0 * std::max(mesh.scene_diagonal, 1e-12);  // a sun's rays start beyond the scene
+  const vec3 centre = from ? (from->corners[0] + from->corners[1] + from->corners[2]) / 3.0 : vec3(0.0);
 
   // How much each specular element receives, roughly: the choice of
   // targets. Elements wholly behind a shooter get nothing, exactly.
@@ -182,17 +184,16 @@ std::uint64_t send_paths(const scene& s, const form_factor_context& context, con
     const std::array<vec3, 3> corners = element_corners(mesh, std::size_t(e));
     const vec3 c = (corners[0] + corners[1] + corners[2]) / 3.0;
     vec3 n = mesh.element_normals[std::size_t(e)];
-    if (glm::dot(n, centre - c) < 0.0) n = -n;  // glass and mirrors take light on either side
     double f = 0.0;
     if (from) {
+      if (glm::dot(n, centre - c) < 0.0) n = -n;  // glass and mirrors take light on either side
       for (const vec3& corner : corners)
         if (glm::dot(from->normal, corner - centre) > tolerance) reachable[i] = 1;
       if (reachable[i]) f = point_polygon_form_factor(c, n, from->corners);
     } else {
       reachable[i] = 1;
-      const vec3 to = centre - c;
-      const double r2 = glm::dot(to, to);
-      f = r2 > 0.0 ? std::max(0.0, glm::dot(n, to)) / (r2 * std::sqrt(r2)) : 0.0;
+      const light_arrival a = light_at(*source.light, c, far);
+      f = std::abs(glm::dot(n, a.to_light)) * channel_mean(a.irradiance);
     }
     weight[i] = mesh.element_areas[std::size_t(e)] * f;
     largest = std::max(largest, f);
@@ -230,10 +231,15 @@ std::uint64_t send_paths(const scene& s, const form_factor_context& context, con
         const glm::ivec3 t = mesh.elements[std::size_t(e)];
         const vec3 b = uniform_barycentric(rng.uniform(), rng.uniform());
         const vec3 y = b[0] * mesh.positions[t[0]] + b[1] * mesh.positions[t[1]] + b[2] * mesh.positions[t[2]];
-        vec3 x = source.position;
+        vec3 x(0.0);
+        rgb arriving(0.0);  // a light's irradiance at y, facing it
         if (from) {
           const vec3 a = uniform_barycentric(rng.uniform(), rng.uniform());
           x = a[0] * from->corners[0] + a[1] * from->corners[1] + a[2] * from->corners[2];
+        } else {
+          const light_arrival a = light_at(*source.light, y, far);
+          x = a.shadow_end;
+          arriving = a.irradiance;
         }
         const vec3 to = y - x;
         const double r2 = glm::dot(to, to);
@@ -250,7 +256,7 @@ std::uint64_t send_paths(const scene& s, const form_factor_context& context, con
           power = source.radiosity * (cos_x * cos_y / (pi * r2) * from->area * area / (p * count));
           start += from->normal * context.offset;
         } else {
-          power = source.intensity * (cos_y / r2 * area / (p * count));
+          power = arriving * (cos_y * area / (p * count));
         }
         // The segment must meet element e first (a little past y: the
         // float hit at the very end of a segment is not reliable).
@@ -347,8 +353,8 @@ std::vector<rgb> specular_light_from_patches(const scene& s, const form_factor_c
 }
 
 std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
-                                             const specular_surfaces* surfaces, std::uint64_t& rays,
-                                             bool patch_images) {
+                                             const specular_surfaces* surfaces, std::uint64_t& rays, bool patch_images,
+                                             bool light_images) {
   const patch_mesh& mesh = *context.mesh;
   std::uint64_t seed = context.params.seed * 0x9E3779B97F4A7C15ull;
   // Emitting patches: their elements' area-weighted mean emission.
@@ -364,14 +370,13 @@ std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_c
       specular_light_from_patches(s, context, surfaces, emission, seed, rays, 0, nullptr, patch_images);
   std::vector<rgb> irradiance(mesh.vertex_count(), rgb(0.0));
   specular_tally tally;
-  for (const point_light& light : s.lights)
+  for (const punctual_light& light : s.lights)
     if (surfaces) {
       specular_source source;
-      source.position = light.position;
-      source.intensity = light.intensity;
+      source.light = &light;
       rays += trace_specular_paths(s, context, *surfaces, source, ++seed, irradiance, tally);
     }
-  if (context.mirrors) {
+  if (context.mirrors && light_images) {
     const std::vector<rgb> mirrored =
         mirrored_point_light_radiosity(s, mesh, context, context.params.mirror_depth, rays);
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) out[v] += mirrored[v];

@@ -1,14 +1,14 @@
 // Light through curved mirrors and glass, by tracing (the part of the
 // specular transfer that mirror images cannot do: mirror_images.h).
 //
-// A source (a shooting triangle, or a point light) sends paths toward the
+// A source (a shooting triangle, or a punctual light) sends paths toward the
 // specular elements that are not planar mirrors: element j is chosen in
 // proportion to an estimate of the power it receives from the source (its
 // area times the form factor from its centre, with a floor so that every
 // element the source can reach keeps a chance), a point y uniformly on
 // it, a point x uniformly on the source, and the path carries
 //   B cos_x cos_y / (pi r^2) A_source A_j / (p_j N)   (triangle, radiosity B)
-//   I cos_y / r^2 A_j / (p_j N)                       (point light, intensity I)
+//   E cos_y A_j / (p_j N)          (punctual light: E its irradiance at y)
 // when the segment x -> y first meets element j: an unbiased estimate of
 // the power the specular elements receive. From there it is followed
 // through reflection and refraction (specular_event.h: Fresnel where the
@@ -64,13 +64,12 @@ struct specular_tally {
 };
 void add(specular_tally& to, const specular_tally& from);
 
-// A source of specular paths: a shooter with its radiosity, or a point
-// light (from == nullptr) with its intensity.
+// A source of specular paths: a shooter with its radiosity, or a punctual
+// light.
 struct specular_source {
   const shooter* from = nullptr;
   rgb radiosity{0.0};
-  vec3 position{0.0};
-  rgb intensity{0.0};
+  const punctual_light* light = nullptr;
 };
 
 // Traces `context.params.specular_paths` paths from the source toward the
@@ -90,11 +89,12 @@ std::uint64_t trace_specular_paths(const scene& s, const form_factor_context& co
 // links carry no light through mirrors). `surfaces` may be null (no
 // paths); the context's mirrors may be null (no images). Without
 // `patch_images`, the emitting patches' mirror images are left out (the
-// hierarchical solver's links through mirrors carry them); the point
-// lights' are kept. Adds the rays cast to `rays`.
+// hierarchical solver's links through mirrors carry them); without
+// `light_images`, the punctual lights' (the hierarchical solver gathers
+// them at its elements and vertices). Adds the rays cast to `rays`.
 std::vector<rgb> specular_light_from_sources(const scene& s, const form_factor_context& context,
                                              const specular_surfaces* surfaces, std::uint64_t& rays,
-                                             bool patch_images = true);
+                                             bool patch_images = true, bool light_images = true);
 
 // The same from patches of the context's mesh, each radiating uniformly
 // with `radiosity[patch]` (zero: skipped), without the point lights: what
