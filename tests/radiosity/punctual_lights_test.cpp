@@ -92,6 +92,56 @@ TEST(SpotLight, FloorTakesTheConeInEverySolver) {
   }
 }
 
+// No link carries a punctual light's light, so the hierarchical solver
+// splits elements where it varies: the spot's edge ends up in small
+// elements, and the linear interpolation between vertices follows it.
+TEST(SpotLight, TheHierarchicalSolverSplitsElementsAlongTheConesEdge) {
+  scene s = floor_scene(2.0, 0.5);
+  s.lights.push_back(down_spot());
+  const patch_mesh mesh = mesh_of(s, 0.5);
+  const punctual_light& spot = s.lights[0];
+  double error[2] = {0.0, 0.0};
+  double edge_area[2] = {0.0, 0.0}, edge_elements[2] = {0.0, 0.0};
+  for (const bool split : {false, true}) {
+    radiosity_params p;
+    p.method = solver_method::hierarchical;
+    p.hierarchical.split_elements = split;
+    p.hierarchical.min_edge = 0.02;
+    auto solver = make_radiosity_solver(s, mesh, p);
+    stop_criterion stop;
+    stop.remaining = 1e-9;
+    stop.max_steps = 400;
+    run_solver(*solver, stop);
+    const patch_mesh& solved = solved_mesh(*solver);
+    const auto solution = make_snapshot(*solver);
+    // At 4 points inside each element: the interpolated value against the
+    // exact one, by area.
+    for (std::size_t e = 0; e < solved.element_count(); ++e) {
+      const glm::ivec3 t = solved.elements[e];
+      for (const vec3& b : {vec3(1, 1, 1) / 3.0, vec3(4, 1, 1) / 6.0, vec3(1, 4, 1) / 6.0, vec3(1, 1, 4) / 6.0}) {
+        const vec3 x = b[0] * solved.positions[t[0]] + b[1] * solved.positions[t[1]] + b[2] * solved.positions[t[2]];
+        const double shown = b[0] * solution->radiosity[t[0]].g + b[1] * solution->radiosity[t[1]].g +
+                             b[2] * solution->radiosity[t[2]].g;
+        const vec3 to = spot.position - x;
+        const double r = glm::length(to);
+        const double exact = 0.5 * 6.0 * cone_share(spot, -to / r) * (to.y / r) / (r * r);
+        error[split] += std::abs(shown - exact) * solved.element_areas[e] / 4.0;
+      }
+      const vec3 c = (solved.positions[t[0]] + solved.positions[t[1]] + solved.positions[t[2]]) / 3.0;
+      const double share = cone_share(spot, glm::normalize(c - spot.position));
+      if (share > 0.0 && share < 1.0) {
+        edge_area[split] += solved.element_areas[e];
+        ++edge_elements[split];
+      }
+    }
+  }
+  // Error integrated over the floor (16 square units; peak radiosity
+  // 0.5 x 6 / 1.5^2 = 1.33): 0.29 on the input mesh, 0.0014 split.
+  EXPECT_LT(error[1], 0.05 * error[0]) << error[0] << " -> " << error[1];
+  // The edge's elements are smaller: 0.0625 -> 0.00015 in area.
+  EXPECT_LT(edge_area[1] / edge_elements[1], 0.05 * edge_area[0] / edge_elements[0]);
+}
+
 TEST(Sun, FloorTakesECosineAndARoofCastsItsShadow) {
   scene s = floor_scene(2.0, 0.5);
   // A roof facing up, 1 above the floor: the sun, 30 degrees off the

@@ -1,12 +1,16 @@
 #include "radiosity/hierarchical/element_refinement.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "base/check.h"
+#include "base/parallel.h"
 #include "radiosity/hierarchical/sources.h"
 #include "radiosity/hierarchical/view_importance.h"
 #include "radiosity/transfer/form_factor.h"
+#include "radiosity/transfer/mirror_images.h"
+#include "radiosity/transfer/point_lights.h"
 
 namespace bounce {
 namespace {
@@ -71,6 +75,47 @@ int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>&
       !(element_longest_edge(mesh, std::size_t(r.element)) > element_min_edge(solver, std::size_t(r.element))))
     return 0;
   return std::clamp(int(std::ceil(std::log2(ratio))), 1, solver.params.max_bisections);
+}
+
+std::vector<std::pair<int, int>> lamp_marks(const hierarchical_solver& solver, double tolerance,
+                                            std::uint64_t& rays_cast) {
+  const scene& s = *solver.source;
+  if (!solver.params.split_elements || s.lights.empty()) return {};
+  const patch_mesh& mesh = solver.mesh();
+  const element_sources& src = solver.sources;
+  std::vector<std::vector<std::pair<int, int>>> parts((mesh.element_count() + 255) / 256);
+  std::atomic<std::uint64_t> cast{0};
+  for_each_block(solver.params.parallel, parts.size(), 1, [&](std::size_t b, std::size_t end) {
+    std::uint64_t rays = 0;
+    for (std::size_t part = b; part < end; ++part)
+      for (std::size_t e = part * 256; e < std::min(mesh.element_count(), (part + 1) * 256); ++e) {
+        const int leaf = solver.hierarchy.tree.leaf_of_element[e];
+        const cluster_node& r = solver.hierarchy.tree.nodes[std::size_t(leaf)];
+        const double weight = r.area * channel_max(solver.hierarchy.rho[e]) * receiver_weight(solver, leaf);
+        if (!(weight > 0.0)) continue;
+        auto lamp = [&](const vec3& p) {
+          rgb e_at = punctual_light_irradiance(s, solver.context, p, r.normal, rays);
+          if (!src.light_images.empty())
+            e_at += mirrored_light_irradiance(solver.context, src.light_images, p, r.normal, rays);
+          return channel_max(e_at);
+        };
+        double lo = lamp(r.centroid), hi = lo;
+        for (const vec3& corner : element_corners(mesh, e)) {
+          // Towards the corners, not at them: a corner may touch an occluder.
+          const double at = lamp(r.centroid + 0.75 * (corner - r.centroid));
+          lo = std::min(lo, at);
+          hi = std::max(hi, at);
+        }
+        const double ratio = (hi - lo) * weight / tolerance;
+        if (!(ratio > 1.0) || !(element_longest_edge(mesh, e) > element_min_edge(solver, e))) continue;
+        parts[part].emplace_back(int(e), std::clamp(int(std::ceil(std::log2(ratio))), 1, solver.params.max_bisections));
+      }
+    cast += rays;
+  });
+  rays_cast += cast;
+  std::vector<std::pair<int, int>> out;
+  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+  return out;
 }
 
 bool splits_pending(const hierarchical_solver& solver) {

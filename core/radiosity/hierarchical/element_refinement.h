@@ -10,6 +10,8 @@
 // link needs them: at contacts, shadow edges and gradients.
 #pragma once
 
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "radiosity/hierarchical/state.h"
@@ -26,6 +28,15 @@ namespace bounce {
 // (with a view and no min_edge given, a seen element may go below it).
 int bisections_needed(const hierarchical_solver& solver, const std::vector<rgb>& node_b, double tolerance, int i, int j,
                       double factor, float visibility, const mirror_chain* chain);
+
+// Marks (element, bisections) for the punctual lights' light, which no
+// link carries: where it varies over an element (towards the corners
+// against the centre, mirror images included) by more than the tolerance
+// once times the element's area and rho: a spot's edge, a point light's or
+// a sun's shadow. Each bisection halves the error, as for links. Empty
+// unless params.split_elements and the scene has punctual lights. Adds
+// the shadow rays cast to `rays`.
+std::vector<std::pair<int, int>> lamp_marks(const hierarchical_solver& solver, double tolerance, std::uint64_t& rays);
 
 // Element refinement still to make: marks, passes left, no failure.
 bool splits_pending(const hierarchical_solver& solver);

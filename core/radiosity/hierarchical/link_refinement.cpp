@@ -132,18 +132,20 @@ void refine_self(refine_context& ctx, int i) {
     for (int a = node.first_child; a < node.first_child + node.child_count; ++a) body(a);
 }
 
-// Per element the most bisections any pair asked for; the marks are
+// Per element the most bisections any pair or the lamps asked for; the marks are
 // dropped when too few elements ask (params.min_marked_fraction).
-void collect_marks(hierarchical_solver& solver, refine_context& ctx) {
+void collect_marks(hierarchical_solver& solver, refine_context& ctx, const std::vector<std::pair<int, int>>& lamp) {
   solver.split_marks.clear();
   std::size_t marked = 0;
+  auto mark = [&](int element, int bisections) {
+    if (solver.split_marks.empty()) solver.split_marks.assign(solver.mesh().element_count(), 0);
+    std::uint8_t& m = solver.split_marks[std::size_t(element)];
+    marked += m == 0 ? 1 : 0;
+    m = std::max(m, std::uint8_t(bisections));
+  };
   for (const auto& part : ctx.marks)
-    for (const auto& [element, bisections] : part) {
-      if (solver.split_marks.empty()) solver.split_marks.assign(solver.mesh().element_count(), 0);
-      std::uint8_t& m = solver.split_marks[std::size_t(element)];
-      marked += m == 0 ? 1 : 0;
-      m = std::max(m, std::uint8_t(bisections));
-    }
+    for (const auto& [element, bisections] : part) mark(element, bisections);
+  for (const auto& [element, bisections] : lamp) mark(element, bisections);
   solver.progress.split_marks += marked;
   // With a view, of the elements it sees: the rest of a large scene may
   // need nothing, and the view's few hundred are what the picture shows.
@@ -194,8 +196,9 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
   for (auto& part : ctx.mirror_links) h.mirror_links.links.insert(h.mirror_links.links.end(), part.begin(), part.end());
   index_links(h.links, h.tree.nodes.size());
   index_links(h.mirror_links, h.tree.nodes.size());
-  collect_marks(solver, ctx);
-  solver.progress.rays += ctx.rays.load();
+  std::uint64_t lamp_rays = 0;
+  collect_marks(solver, ctx, lamp_marks(solver, tolerance * power, lamp_rays));
+  solver.progress.rays += ctx.rays.load() + lamp_rays;
   ++solver.progress.refinements;
   if (ctx.limit_hit)
     solver.progress.warning = "link limit reached (" + std::to_string(h.links.size()) + " links, " +

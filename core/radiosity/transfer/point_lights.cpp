@@ -36,7 +36,13 @@ rgb sky_irradiance(const scene& s, const form_factor_context& context, const vec
 
 rgb point_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
                            std::uint64_t& rays) {
-  rgb irradiance = s.sky.on() ? sky_irradiance(s, context, p, n, rays) : rgb(0.0);
+  const rgb sky = s.sky.on() ? sky_irradiance(s, context, p, n, rays) : rgb(0.0);
+  return sky + punctual_light_irradiance(s, context, p, n, rays);
+}
+
+rgb punctual_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
+                              std::uint64_t& rays) {
+  rgb irradiance(0.0);
   const double far = 4.0 * std::max(context.mesh->scene_diagonal, 1e-12);
   for (const punctual_light& light : s.lights) {
     const light_arrival a = light_at(light, p, far);

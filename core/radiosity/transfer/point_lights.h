@@ -17,6 +17,11 @@ namespace bounce {
 rgb point_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
                            std::uint64_t& rays);
 
+// The punctual lights' part alone (no sky): what changes sharply over a
+// surface, at a spot's edge and a point light's or sun's shadow.
+rgb punctual_light_irradiance(const scene& s, const form_factor_context& context, const vec3& p, const vec3& n,
+                              std::uint64_t& rays);
+
 // Radiosity each vertex reflects of that direct light, for the
 // vertices from `first` on (those before are left 0: adaptive refinement
 // asks for its new vertices only). Adds the shadow rays cast to `rays`.
