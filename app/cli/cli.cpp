@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/bench_command.h"
+#include "cli/bake_command.h"
 #include "cli/compare_command.h"
 #include "cli/console.h"
 #include "cli/info_command.h"
@@ -72,7 +73,7 @@ std::string check_program_scene(const std::string& scene, bool any_command) {
       !std::filesystem::exists(scene))
     return "'" + scene +
            "' is neither a command nor a scene file (commands: info, view, render, "
-           "trace, solve, bench, compare)";
+           "trace, solve, bake, bench, compare)";
   return {};
 }
 
@@ -106,6 +107,7 @@ int run_cli(int argc, char** argv) {
   render_options render;
   trace_options trace;
   solve_options solve;
+  solve_options bake;
   bench_options bench;
   compare_options compare;
   // In the order `bounce --help` lists them.
@@ -118,6 +120,8 @@ int run_cli(int argc, char** argv) {
                    add_trace_options, check_trace_options, run_trace),
       bind_command("solve", "run the radiosity solver and report statistics", solve, add_solve_options,
                    check_solve_options, run_solve),
+      bind_command("bake", "solve, then write the meshes with their light as glTF, PLY or OBJ for other tools", bake,
+                   add_bake_options, check_bake_options, run_solve),
       bind_command("bench", "measure speed against error: every method on every bench scene", bench, add_bench_options,
                    nullptr, run_bench_command),
       bind_command("compare", "error of one PFM picture against a reference PFM", compare, add_compare_options, nullptr,

@@ -17,7 +17,6 @@
 #include "common/exit_code.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/ply.h"
 #include "radiosity/progressive/reference_solver.h"
 #include "radiosity/solve.h"
 #include "radiosity/transfer/occlusion.h"
@@ -152,12 +151,16 @@ int solve_scene(const scene& s, const solve_options& options) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return exit_input_error;
   }
-  if (!options.ply_path.empty()) {
-    if (!write_ply(options.ply_path, solved, solution->radiosity, error)) {
+  for (const auto& [path, settings] :
+       {std::pair{options.ply_path, bake_settings{}}, {options.bake_path, options.bake}}) {
+    if (path.empty()) continue;
+    double exposure = 0.0;
+    if (!write_bake(path, s, solved, *solution, settings, error, &exposure)) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return exit_input_error;
     }
-    say("wrote %s\n", options.ply_path.c_str());
+    say("wrote %s (%zu vertices, %zu triangles; colours at exposure %.4g)\n", path.c_str(), solved.vertex_count(),
+        solved.element_count(), exposure);
   }
   return exit_ok;
 }
@@ -189,6 +192,8 @@ std::string check_solve_options(const CLI::App& command, solve_options& options)
   }
   if (options.ray_baseline && options.solver.form_factors.method != form_factor_method::raycast)
     return "--ray-baseline applies to --method raycast only (the hemicube casts no shadow rays)";
+  if (!options.ply_path.empty() && bake_format_of(options.ply_path) != bake_format::ply)
+    return "--ply: expected a .ply file, got '" + options.ply_path + "'";
   return check_output_files({{"--ply", options.ply_path, false}, {"--stats", options.stats_path, false}});
 }
 

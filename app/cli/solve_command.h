@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "radiosity/bake.h"
 #include "radiosity/solver_settings.h"
 
 namespace CLI {
@@ -14,7 +15,9 @@ namespace bounce {
 struct solve_options {
   std::string scene;          // SCENE; empty: the embedded Cornell box
   solver_settings solver;     // the solver options
-  std::string ply_path;       // --ply
+  std::string ply_path;       // --ply: a bake to PLY at the automatic exposure
+  std::string bake_path;      // bake --out
+  bake_settings bake;         // bake --exposure, --parts
   std::string stats_path;     // --stats: solver statistics as JSON
   bool reference = false;     // --reference: also solve the full matrix and compare
   bool ray_baseline = false;  // --ray-baseline: replay recorded solver rays through rtcOccluded1

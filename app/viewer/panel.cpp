@@ -596,6 +596,9 @@ void draw_view_buttons(panel_state& state, panel_actions& act) {
   if (ImGui::Button("Screenshot")) act.screenshot = true;
   ImGui::SameLine();
   ImGui::Checkbox("with panel", &state.screenshot_with_panel);
+  if (ImGui::Button("Bake to file")) act.bake = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The light as shown, in vertex colours: a .glb for Blender, three.js or an engine");
 }
 
 // gouraud.frag's false-colour scale at t in [0, 1], as the screen shows

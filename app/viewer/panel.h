@@ -62,6 +62,7 @@ struct panel_state {
   bool auto_exposure = true;  // the window sets display.exposure from the picture (exposure_control.h)
   bool screenshot_with_panel = false;
   std::string screenshot_path;  // empty: a new name for each screenshot (dated_file_name)
+  std::string bake_path;        // "Bake to file": empty, a new .glb for each (dated_file_name)
   still_settings still;
   camera current_camera;                   // the window's camera this frame (the window sets it)
   std::vector<camera_bookmark> bookmarks;  // of the scene shown
@@ -88,6 +89,7 @@ struct panel_actions {
   bool apply_mesh = false;
   bool pause = false, resume = false, step = false, restart = false;
   bool screenshot = false;
+  bool bake = false;  // write the shown solution for other tools (bake_action.h)
   bool frame_scene = false, reset_camera = false;
   bool trace_still = false, cancel_still = false, save_still_png = false, save_still_pfm = false;
   bool compute_reference = false;  // path trace a reference of the camera for the error plot

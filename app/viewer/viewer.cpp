@@ -30,6 +30,7 @@
 #include "scene/warning_groups.h"
 #include "trace/back_faces.h"
 #include "trace/ray_scene.h"
+#include "viewer/bake_action.h"
 #include "viewer/error_tracker.h"
 #include "viewer/exposure_control.h"
 #include "viewer/input.h"
@@ -82,6 +83,7 @@ panel_actions either(panel_actions a, const panel_actions& b) {
   a.step |= b.step;
   a.restart |= b.restart;
   a.screenshot |= b.screenshot;
+  a.bake |= b.bake;
   a.frame_scene |= b.frame_scene;
   a.reset_camera |= b.reset_camera;
   a.trace_still |= b.trace_still;
@@ -545,6 +547,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
     orbit_ = orbit_from_camera(b);
     scene_camera_.fov_y_degrees = b.fov_y_degrees;
   }
+  if (act.bake) panel_.message = bake_shown_solution(view, panel_.bake_path, panel_.display.exposure);
   if ((act.save_still_png || act.save_still_pfm) && still_.result()) {
     const image& picture = still_.result()->picture;
     std::string path = act.save_still_png ? panel_.still.png_path : panel_.still.pfm_path;

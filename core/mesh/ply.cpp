@@ -8,18 +8,13 @@
 
 namespace bounce {
 
-bool write_ply(const std::string& path, const patch_mesh& mesh, const std::vector<rgb>& radiosity, std::string& error) {
+bool write_ply(const std::string& path, const patch_mesh& mesh, const std::vector<rgb>& radiosity, double exposure,
+               std::string& error) {
   std::ofstream out(path);
   if (!out) {
     error = path + ": cannot open for writing";
     return false;
   }
-  // Exposure from the reflecting vertices: emitters would wash everything out.
-  std::vector<rgb> reflected;
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (mesh.vertex_emission[v] == rgb(0.0)) reflected.push_back(radiosity[v] / std::numbers::pi);
-  const double exposure = auto_exposure(reflected);
-
   out << "ply\nformat ascii 1.0\ncomment Bounce radiosity: radiosity_* is B in W/m^2 per scene unit^2, unscaled\n"
       << "comment red/green/blue: radiance B/pi x exposure " << exposure << ", sRGB\n"
       << "element vertex " << mesh.vertex_count() << "\n"

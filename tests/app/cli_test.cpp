@@ -46,9 +46,9 @@ run_result run(const std::string& args) {
 TEST(Cli, HelpListsEveryCommand) {
   run_result r = run("--help");
   EXPECT_EQ(r.code, 0);
-  for (const char* command : {"info", "view", "render", "trace", "solve", "bench"})
+  for (const char* command : {"info", "view", "render", "trace", "solve", "bake", "bench"})
     EXPECT_NE(r.out.find(command), std::string::npos) << command;
-  for (const char* command : {"info", "view", "render", "trace", "solve", "bench"})
+  for (const char* command : {"info", "view", "render", "trace", "solve", "bake", "bench"})
     EXPECT_EQ(run(std::string(command) + " --help").code, 0) << command;
 }
 
@@ -696,6 +696,31 @@ TEST(Cli, SolveWritesStatsAndPly) {
     EXPECT_NE(text.find(std::string(line) + "\n"), std::string::npos) << line;
   EXPECT_NE(text.find("element vertex " + std::to_string(j["vertices"].get<int>()) + "\n"), std::string::npos);
   EXPECT_NE(text.find("element face " + std::to_string(j["elements"].get<int>()) + "\n"), std::string::npos);
+}
+
+// bake: solve, then the meshes with their light, in the format --out names;
+// what the files hold is tested in tests/radiosity/bake_test.cpp.
+TEST(Cli, BakeWritesTheFormatItsOutputNames) {
+  scratch_dir dir;
+  const std::string glb = dir.path("lit.glb");
+  run_result r = run("bake --max-edge 150 --until 0.05 --link-tolerance 1e-3 --parts --exposure 3 --out " + glb);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("wrote " + glb), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("colours at exposure 3"), std::string::npos) << r.out;
+  EXPECT_EQ(read_text(glb).substr(0, 4), "glTF");
+  const std::string obj = dir.path("lit.obj");
+  ASSERT_EQ(run("bake --max-edge 150 --until 0.05 --link-tolerance 1e-3 --out " + obj).code, 0);
+  EXPECT_NE(read_text(obj).find("\no floor\nv "), std::string::npos);
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"bake --out " + dir.path("lit.png"), "--out: expected a .glb, .gltf, .ply or .obj file"},
+           {"bake --parts --out " + dir.path("lit.ply"), "--parts applies to glTF output only"},
+           {"bake --exposure 0 --out " + glb, "--exposure: must be above 0"},
+           {"bake", "--out is required"},
+           {"solve --ply " + dir.path("lit.obj"), "--ply: expected a .ply file"}}) {
+    const run_result bad = run(args);
+    EXPECT_EQ(bad.code, 2) << args;
+    EXPECT_NE(bad.err.find(message), std::string::npos) << args << ": " << bad.err;
+  }
 }
 
 TEST(Cli, ShadowOutlinesAreCutOnRequestForEitherSolver) {

@@ -17,6 +17,7 @@
 #include "scene/camera_file.h"
 #include "scene/scene_io.h"
 #include "test_files.h"
+#include "viewer/bake_action.h"
 #include "viewer/panel.h"
 #include "viewer/solver_worker.h"
 #include "viewer/user_files.h"
@@ -409,6 +410,22 @@ TEST(Panel, UnnamedPicturesNeverOverwriteEachOther) {
   EXPECT_FALSE(std::filesystem::exists(second));
   EXPECT_TRUE(dated_file_name("generated:box-room-60", "still", ".pfm").starts_with("box-room-60-still-"));
   std::filesystem::current_path(here);
+}
+
+// "Bake to file" writes what the window shows at the window's exposure.
+TEST(Panel, BakeToFileWritesTheShownSolution) {
+  test_support::scratch_dir dir;
+  solver_worker worker;
+  panel_state panel;
+  EXPECT_EQ(bake_shown_solution(worker_view{}, dir.path("early.glb"), 1.0), "bake: no solution to bake yet");
+  const std::shared_ptr<const worker_view> view = solved(worker, panel, 1e-3);
+  const std::string path = dir.path("shown.glb");
+  const std::string message = bake_shown_solution(*view, path, 2.5);
+  EXPECT_EQ(message, "baked: " + path + " (exposure 2.5)");
+  const std::string bytes = test_support::read_text(path);
+  EXPECT_EQ(bytes.substr(0, 4), "glTF");
+  EXPECT_NE(bytes.find("KHR_materials_unlit"), std::string::npos);
+  EXPECT_EQ(bake_shown_solution(*view, dir.path("shown.png"), 2.5).rfind("bake: ", 0), 0u);
 }
 
 // The status says what the run does: under its stopping point with links
