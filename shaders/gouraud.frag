@@ -51,7 +51,10 @@ uniform vec3 checker0;
 uniform vec3 checker1;
 uniform float checker_scale;  // squares per unit of uv
 uniform vec3 inverse_mean;    // 1 / mean(texture), 0 where the mean is 0
-uniform vec3 emitted;         // the material's ke: emission is not textured
+uniform vec3 emitted;         // the material's ke, the mean of its emission
+uniform int emission_mode;    // 1: the emission follows emission_image (material::emission_texture)
+uniform sampler2D emission_image;
+uniform vec3 emission_inverse_mean;
 #endif
 
 #ifdef SPECULAR
@@ -263,11 +266,17 @@ void main() {
   vertex_radiance = max(vertex_radiance, vec3(0.0));
 #ifdef TEXTURED
   // Outside any divergent return, so that the derivatives are defined.
+  // The solution holds the mean emission; the glow is drawn where the
+  // emission texture puts it.
+  vec3 glow = emitted;
+  if (emission_mode == 1) glow *= texture(emission_image, vec2(uv.x, 1.0 - uv.y)).rgb * emission_inverse_mean;
   if (texture_mode == 1) {
     vec3 detail = texture(image, vec2(uv.x, 1.0 - uv.y)).rgb * inverse_mean;
-    vertex_radiance = emitted + (vertex_radiance - emitted) * detail;
+    vertex_radiance = glow + (vertex_radiance - emitted) * detail;
   } else if (texture_mode == 2) {
-    vertex_radiance = emitted + (vertex_radiance - emitted) * checker(uv) * inverse_mean;
+    vertex_radiance = glow + (vertex_radiance - emitted) * checker(uv) * inverse_mean;
+  } else {
+    vertex_radiance = glow + (vertex_radiance - emitted);
   }
 #endif
   // The back of a one-sided surface has no light of its own: black, as the

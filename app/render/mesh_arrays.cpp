@@ -146,6 +146,11 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
   auto texture_of = [&](const material* m) {
     return m && m->texture >= 0 && std::size_t(m->texture) < source->textures.size() ? m->texture : -1;
   };
+  auto emission_of = [&](const material* m) {
+    return m && m->emission_texture >= 0 && std::size_t(m->emission_texture) < source->textures.size()
+               ? m->emission_texture
+               : -1;
+  };
   auto specular = [](const material* m) { return m && glm::any(glm::greaterThan(glm::max(m->kr, m->kt), rgb(0.0))); };
   // (material, surface if specular else -1) -> its elements
   std::map<std::pair<int, int>, std::vector<std::size_t>> runs;
@@ -159,7 +164,7 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
   const glm::vec3 box_size = out.bounds_max - out.bounds_min;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const material* m = material_of(e);
-    if (texture_of(m) < 0 && !specular(m)) {
+    if (texture_of(m) < 0 && emission_of(m) < 0 && !specular(m)) {
       plain.emplace_back(morton_code(glm::vec3(element_centroid(mesh, e)), out.bounds_min, box_size), e);
       continue;
     }
@@ -192,6 +197,7 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
     const material& m = source->materials[std::size_t(key.first)];
     material_run run;
     run.texture = texture_of(&m);
+    run.emission_texture = emission_of(&m);
     run.emitted = glm::vec3(m.ke);
     run.first = out.indices.size();
     for (std::size_t e : elements) emit(e);

@@ -358,6 +358,19 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
         glBindTexture(GL_TEXTURE_2D, 0);
       }
       glUniform3fv(glGetUniformLocation(p, "emitted"), 1, &run.emitted[0]);
+      if (group == pass::textured) {
+        const bool glows = run.emission_texture >= 0 && std::size_t(run.emission_texture) < textures_.size() &&
+                           textures_[std::size_t(run.emission_texture)].id;
+        glUniform1i(glGetUniformLocation(p, "emission_mode"), glows ? 1 : 0);
+        if (glows) {
+          const gl_texture& t = textures_[std::size_t(run.emission_texture)];
+          glActiveTexture(GL_TEXTURE2);
+          glBindTexture(GL_TEXTURE_2D, t.id);
+          glUniform1i(glGetUniformLocation(p, "emission_image"), 2);
+          glUniform3fv(glGetUniformLocation(p, "emission_inverse_mean"), 1, &t.inverse_mean[0]);
+          glActiveTexture(GL_TEXTURE0);
+        }
+      }
       if (specular) {
         const specular_surface& probe = probe_surfaces_[std::size_t(run.probe)];
         // A solid seen from outside: its far half is hidden by its near half.

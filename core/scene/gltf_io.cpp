@@ -23,6 +23,7 @@
 #include <tiny_gltf.h>
 
 #include "scene/reader_support.h"
+#include "scene/texture.h"
 
 namespace bounce {
 namespace {
@@ -329,6 +330,17 @@ struct gltf_reader {
   }
 
   // The scene material for glTF material `index` (-1: glTF's default);
+  // A number in a material extension (`fallback` when absent), in [lo, hi].
+  double extension_number(const tinygltf::Value& extension, const char* key, double fallback, double lo, double hi,
+                          const std::string& who) {
+    if (!extension.Has(key)) return fallback;
+    const tinygltf::Value& v = extension.Get(key);
+    const double x = v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+    if (!(x >= lo && x <= hi))
+      fail(who, std::string(key) + " must be a number from " + format_value(lo) + " to " + format_value(hi));
+    return x;
+  }
+
   // `textured` false drops its texture (for primitives without uvs).
   int scene_material(int index, bool textured) {
     if (auto it = material_of.find({index, textured}); it != material_of.end()) return it->second;
@@ -388,6 +400,39 @@ struct gltf_reader {
                                   "a metal is a mirror when metallicFactor >= 0.5 and roughnessFactor <= 0.25, "
                                   "otherwise diffuse, rho = baseColorFactor x baseColorTexture");
       }
+      // KHR_materials_transmission (+ _ior, _volume): glass. Without a
+      // volume the surface is thin-walled (glTF's default): light passes
+      // straight through, with the interface's reflection at normal
+      // incidence; with one, it is the boundary of a solid that refracts.
+      if (auto it = g.extensions.find("KHR_materials_transmission"); it != g.extensions.end()) {
+        const double transmission = extension_number(it->second, "transmissionFactor", 0.0, 0.0, 1.0, who);
+        double ior = 1.5;
+        if (auto i = g.extensions.find("KHR_materials_ior"); i != g.extensions.end())
+          ior = extension_number(i->second, "ior", 1.5, 1.0, 10.0, who);
+        double thickness = 0.0;
+        if (auto v = g.extensions.find("KHR_materials_volume"); v != g.extensions.end())
+          thickness = extension_number(v->second, "thicknessFactor", 0.0, 0.0, 1e9, who);
+        if (transmission > 0.0) {
+          const rgb base = out.rho;  // what metallic left of the base colour
+          out.rho = (1.0 - transmission) * base;
+          if (thickness > 0.0) {
+            out.kt = transmission * base;
+            out.ior = ior;
+            out.fresnel = true;
+          } else {
+            const double r0 = (ior - 1.0) * (ior - 1.0) / ((ior + 1.0) * (ior + 1.0));
+            out.kt = transmission * (1.0 - r0) * base;
+            out.kr += transmission * r0 * base;
+            out.ior = 1.0;
+          }
+          if (roughness > gltf_mirror_roughness)
+            warn_once("rough transmission", who +
+                                                ": roughness ignored for transmission (and in every other "
+                                                "material): Bounce's glass is clear");
+          if (it->second.Has("transmissionTexture"))
+            warn_once("transmission texture", who + ": transmissionTexture ignored (and in every other material)");
+        }
+      }
       if (pbr.metallicRoughnessTexture.index >= 0)
         warn_once("metallic texture", who +
                                           ": metallicRoughnessTexture ignored (and in every other material): "
@@ -397,10 +442,21 @@ struct gltf_reader {
         warn_once("occlusion", who +
                                    ": occlusion maps ignored (and in every other material): radiosity computes "
                                    "the occlusion itself");
-      if (g.emissiveTexture.index >= 0)
-        warn_once("emissive texture", who +
-                                          ": emissive textures ignored (and in every other material): the whole "
-                                          "surface emits emissiveFactor x emissiveStrength");
+      // An emissive texture: the surface glows where the texture does, with
+      // the power of its mean (a label is not a lamp).
+      if (textured && g.emissiveTexture.index >= 0 && any_positive(out.ke)) {
+        const int t = base_colour_texture(g.emissiveTexture.index, where + ".emissiveTexture");
+        if (t >= 0) {
+          out.ke *= texture_mean(textures[std::size_t(t)]);
+          out.emission_texture = t;
+        }
+        const auto& base = g.pbrMetallicRoughness.baseColorTexture;
+        if (base.index >= 0 && base.texCoord != g.emissiveTexture.texCoord)
+          warn_once("emissive uv", who +
+                                       ": the emissive texture is read with the base colour texture's "
+                                       "TEXCOORD_" +
+                                       std::to_string(base.texCoord) + " (and in every other material)");
+      }
       if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
         warn_once("alpha",
                   who + ": alphaMode " + g.alphaMode + " ignored (and in every other material): surfaces are opaque");
@@ -456,9 +512,11 @@ struct gltf_reader {
       bool textured = false;
       int texcoord = 0;
       if (prim.material >= 0) {
-        const auto& info = m.materials[prim.material].pbrMetallicRoughness.baseColorTexture;
-        textured = info.index >= 0;
-        texcoord = info.texCoord;
+        // The base colour texture's set, else the emissive texture's.
+        const tinygltf::Material& mat = m.materials[prim.material];
+        const auto& base = mat.pbrMetallicRoughness.baseColorTexture;
+        textured = base.index >= 0 || mat.emissiveTexture.index >= 0;
+        texcoord = base.index >= 0 ? base.texCoord : mat.emissiveTexture.texCoord;
       }
       if (textured) {
         const std::string set = "TEXCOORD_" + std::to_string(texcoord);
@@ -467,8 +525,7 @@ struct gltf_reader {
           for (vec2& t : d.uvs) t.y = 1.0 - t.y;  // glTF's v runs down the image, Bounce's up
         } else {
           textured = false;
-          warn_once("no uv", at + ": its material's base colour texture needs " + set +
-                                 ", which it lacks; the texture is ignored there");
+          warn_once("no uv", at + ": its material's textures need " + set + ", which it lacks; they are ignored there");
         }
       }
       d.material = scene_material(prim.material, textured);
@@ -676,8 +733,9 @@ struct gltf_reader {
   }
 
   void read() {
-    static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_mesh_quantization",
-                                                    "KHR_lights_punctual"};
+    static const std::set<std::string> supported = {
+        "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_lights_punctual",
+        "KHR_materials_transmission",      "KHR_materials_ior",     "KHR_materials_volume"};
     // Extensions whose geometry Bounce cannot read: ignoring them would
     // give garbage, not an approximation.
     static const std::set<std::string> unreadable = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};

@@ -42,6 +42,10 @@ struct material {
   rgb specular{0.0};       // Phong highlight colour
   double shininess = 0.0;  // Phong exponent
   int texture = -1;        // index into scene::textures, or -1
+  // Spreads the emission over the surface as a texture does: ke(x) =
+  // ke * t(uv) / mean(t), so ke stays the mean radiance (the power) and the
+  // glow follows the texture (a label, a screen). -1: uniform.
+  int emission_texture = -1;
   bool two_sided = false;  // both sides receive, reflect and emit (two_sided.h)
 };
 

@@ -174,7 +174,7 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     if (std::string problem = validate_scene(s); !problem.empty()) throw load_error(path + ": " + problem);
     const bool model_file = ends_with_icase(path, ".obj") || ends_with_icase(path, ".gltf") ||
                             ends_with_icase(path, ".glb") || read_through_assimp(path);
-    if (model_file && !has_light_source(s)) {
+    if (model_file && !has_lamp(s)) {
       // Most models come without lights: open them as a viewer would, under a white sky.
       s.sky.zenith = s.sky.horizon = rgb(1.0);
       report.warnings.push_back(path +

@@ -118,18 +118,20 @@ bool has_emission(const material& m) {
   return m.ke.r > 0.0 || m.ke.g > 0.0 || m.ke.b > 0.0;
 }
 
-// True when some surface uses an emitting material.
-bool has_emitting_surface(const scene& s) {
+// True when some surface uses an emitting material (with `lamps_only`,
+// one whose glow is not a texture's).
+bool has_emitting_surface(const scene& s, bool lamps_only = false) {
+  auto lamp = [&](const material& m) { return has_emission(m) && !(lamps_only && m.emission_texture >= 0); };
   for (const surface& surf : s.surfaces) {
     bool emits = std::visit(
         [&](const auto& g) {
           using T = std::decay_t<decltype(g)>;
           if constexpr (std::is_same_v<T, polygon_mesh>) {
             for (const polygon_face& f : g.faces)
-              if (has_emission(s.materials[f.material])) return true;
+              if (lamp(s.materials[f.material])) return true;
             return false;
           } else {
-            return has_emission(s.materials[g.material]);
+            return lamp(s.materials[g.material]);
           }
         },
         surf.geometry);
@@ -155,8 +157,12 @@ std::string check_camera(const camera& c) {
 }  // namespace
 
 std::string validate_scene(const scene& s) {
-  for (const material& m : s.materials)
+  for (const material& m : s.materials) {
     if (std::string e = check_material(m); !e.empty()) return e;
+    for (const int t : {m.texture, m.emission_texture})
+      if (t < -1 || t >= int(s.textures.size()))
+        return "material '" + m.name + "': texture " + std::to_string(t) + " does not exist";
+  }
   if (s.surfaces.empty()) return "no surfaces";
   for (const surface& surf : s.surfaces)
     if (std::string e = check_surface(s, surf); !e.empty()) return e;
@@ -188,6 +194,13 @@ std::string validate_scene(const scene& s) {
   }
   if (std::string e = check_camera(s.view); !e.empty()) return e;
   return {};
+}
+
+bool has_lamp(const scene& s) {
+  if (s.sky.on()) return true;
+  for (const punctual_light& l : s.lights)
+    if (any_positive(l.intensity)) return true;
+  return has_emitting_surface(s, /*lamps_only=*/true);
 }
 
 bool has_light_source(const scene& s) {

@@ -17,4 +17,10 @@ std::string validate_scene(const scene& s);
 // without is valid (its picture is black) but worth a warning.
 bool has_light_source(const scene& s);
 
+// True when something lights the scene as a lamp does: a sky, a punctual
+// light, or an emitting material whose glow is not a texture's (a label or
+// a screen glows but does not light a room). A model file without one
+// opens under the automatic sky.
+bool has_lamp(const scene& s);
+
 }  // namespace bounce

@@ -69,6 +69,7 @@ struct surface_point {
   vec3 n_face{0.0};         // geometric normal facing the ray
   rgb rho{0.0};             // diffuse reflectance with the texture, zero on back faces
   rgb texture_detail{1.0};  // texture / its mean: what the radiosity pass averaged away
+  rgb ke{0.0};              // emitted radiance as seen here: the emission texture's detail included
   rgb kr{0.0}, kt{0.0};     // mirror and transmission weights after Fresnel and TIR
   std::optional<vec3> refracted;
 };
@@ -178,6 +179,12 @@ class tracer {
         sp.rho *= value;
         for (int c = 0; c < 3; ++c) sp.texture_detail[c] = mean[c] > 0.0 ? value[c] / mean[c] : 0.0;
       }
+      sp.ke = sp.mat->ke;
+      if (sp.mat->emission_texture >= 0 && any_positive(sp.ke)) {
+        const int t = sp.mat->emission_texture;
+        const rgb value = texture_value(s_.textures[std::size_t(t)], hit.uv), mean = texture_means_[std::size_t(t)];
+        for (int c = 0; c < 3; ++c) sp.ke[c] *= mean[c] > 0.0 ? value[c] / mean[c] : 0.0;
+      }
     }
     // Outside is air; the front side is where the normal points.
     const specular_event split = specular_split(*sp.mat, d, sp.n, sp.front);
@@ -264,7 +271,7 @@ class tracer {
               counters& c) const {
     if (!hit) return escaped_radiance(s_, d);
     const surface_point sp = describe(*hit, d);
-    rgb radiance = sp.front ? sp.mat->ke : rgb(0.0);
+    rgb radiance = sp.ke;
 
     if (sp.front && final_gather_) {
       // Two-pass with a final gather: direct light by shadow rays, caustics
@@ -339,8 +346,7 @@ class tracer {
       }
       if (depth == 0) out.distance = hit->t;
       const surface_point sp = describe(*hit, d);
-      if (sp.front && any_positive(sp.mat->ke) && !rays_.is_sampled_emitter(sp.hit.surface))
-        out.radiance += throughput * sp.mat->ke;
+      if (any_positive(sp.ke) && !rays_.is_sampled_emitter(sp.hit.surface)) out.radiance += throughput * sp.ke;
       if (any_positive(sp.rho)) {
         const diffuse_radiosity b = field_->at(sp.hit.surface, hit->point, sp.n_face);
         if (depth > 0 && caustics_ && sp.front) {
@@ -428,7 +434,9 @@ class tracer {
           const double cos_e = -glm::dot(d, hit->face_normal);
           weight = power_heuristic(diffuse_pdf, hit->t * hit->t / (cos_e * rays_.emitter_area()));
         }
-        radiance += throughput * sp.mat->ke * weight;
+        // Seen from the camera, an emission texture's detail; as light on
+        // the scene, its mean, as next-event estimation samples it.
+        radiance += throughput * (bounce == 0 ? sp.ke : sp.mat->ke) * weight;
       }
       if (bounce + 1 >= p_.max_path) break;
 

@@ -20,6 +20,8 @@
 #include "scene/scene_io.h"
 #include "scene/texture.h"
 #include "test_files.h"
+#include "trace/ray_scene.h"
+#include "trace/ray_tracer.h"
 
 namespace bounce {
 namespace {
@@ -235,6 +237,89 @@ TEST(Gltf, TexturedQuadHasLinearTexelsAndUvTheRightWayUp) {
   }
 }
 
+// An emissive texture: the material emits its mean (the power), the glow
+// follows the texture in the still, and a file lit only by glowing labels
+// still opens under the automatic sky (a label is not a lamp).
+TEST(Gltf, EmissiveTextureGlowsWhereTheTextureDoesWithItsMeanPower) {
+  scratch_dir dir;
+  gltf_file f;
+  f.doc["images"] = {{{"uri", "data:image/png;base64," + base64(png_2x2())}}};
+  f.doc["textures"] = {{{"source", 0}}};
+  const int label = f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}, {"metallicFactor", 0.0}}},
+                                {"emissiveFactor", {2, 2, 2}},
+                                {"emissiveTexture", {{"index", 0}}}});
+  f.roots({f.node({{"mesh", f.mesh({unit_quad(f, label)})}})});
+  const std::string path = dir.write("label.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  ASSERT_EQ(s.materials.size(), 1u);
+  const double grey = std::pow((128 / 255.0 + 0.055) / 1.055, 2.4);
+  const rgb mean = rgb(1.0 + grey) / 4.0;  // red, green, blue and grey texels
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.materials[0].ke[c], 2.0 * mean[c], 1e-6);
+  EXPECT_EQ(s.materials[0].emission_texture, 0);
+  EXPECT_TRUE(s.sky.on());
+  EXPECT_TRUE(has_warning(report, path + ": no emitter: lit by a uniform white sky"))
+      << ::testing::PrintToString(report.warnings);
+  // Seen face on through the texel centres (a 2 x 2 still filling the
+  // quad): each pixel glows with its texel x 2.
+  s.view.eye = vec3(0.5, 0.5, 2.0);
+  s.view.target = vec3(0.5, 0.5, 0.0);
+  s.view.up = vec3(0, 1, 0);
+  s.view.fov_y_degrees = 2.0 * std::atan(0.25) * 180.0 / std::numbers::pi;
+  s.view.width = s.view.height = 2;
+  s.sky = {};
+  const ray_scene rays(s);
+  trace_params p;
+  p.diffuse = diffuse_source::ambient;
+  const image still = trace_image(s, s.view, rays, nullptr, p);
+  const rgb expected[2][2] = {{{2, 0, 0}, {0, 2, 0}}, {{0, 0, 2}, rgb(2 * grey)}};
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(still.at(x, y)[c], expected[y][x][c], 1e-5) << x << "," << y;
+}
+
+// Khronos' ClearCoatTest (in Debian's assimp-testmodels): its labels have
+// emissive textures. They glow, and the samples are lit by the automatic
+// sky, not left black because the labels counted as lamps.
+TEST(Gltf, ClearCoatTestOpensLitWithGlowingLabels) {
+  const std::string path = "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  EXPECT_TRUE(s.sky.on());
+  int glowing = 0;
+  for (const material& m : s.materials) glowing += m.emission_texture >= 0 && any_positive(m.ke);
+  EXPECT_EQ(glowing, 1);  // LabelMaterial
+  const ray_scene rays(s);
+  trace_params p;
+  p.diffuse = diffuse_source::ambient;
+  p.light_samples = 64;
+  auto mean_at = [&](const vec3& centre) {  // a small view straight at a point of the z = 0 plane
+    camera c;
+    c.eye = centre + vec3(0, 0, 10);
+    c.target = centre;
+    c.fov_y_degrees = 2.0;
+    c.width = c.height = 8;
+    const image still = trace_image(s, c, rays, nullptr, p);
+    rgb sum(0.0);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) sum += rgb(still.at(x, y)) / 64.0;
+    return sum;
+  };
+  // The top-left sample (base layer, simple coating), at (-2.1, 5.25):
+  // red, lit by the sky. Measured (0.495, 0.020, 0.010): rho (0.5, 0.02,
+  // 0.01) under a sky of radiance 1, a little of it hidden.
+  const rgb sample = mean_at(vec3(-2.1, 5.25, 0.0));
+  EXPECT_GT(sample.r, 0.4);
+  EXPECT_GT(sample.r, 5.0 * sample.g);
+  // Its label above it, at (-2.09, 6.62): white around black letters
+  // (measured 0.80 grey).
+  const rgb label = mean_at(vec3(-2.087, 6.616, 0.0));
+  EXPECT_GT(channel_mean(label), 0.3) << label.r;
+}
+
 TEST(Gltf, EmissiveQuadGetsFactorTimesStrength) {
   scratch_dir dir;
   gltf_file f;
@@ -382,6 +467,51 @@ TEST(Gltf, SmoothMetalIsAMirrorAndRoughMetalStaysDiffuse) {
   EXPECT_EQ(s.materials[3].rho, rgb(0.2, 0.4, 0.6));
   EXPECT_EQ(count_warnings(report, "metallic and roughness ignored for rough metals"), 1)
       << ::testing::PrintToString(report.warnings);
+}
+
+// KHR_materials_transmission: glass. Thin-walled without a volume (light
+// goes straight through, the interface's reflection at normal incidence);
+// a solid that refracts at KHR_materials_ior's index with one.
+TEST(Gltf, TransmissionIsGlassThinOrSolid) {
+  scratch_dir dir;
+  gltf_file f;
+  f.doc["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume"};
+  auto glass = [&](double transmission, const json& more) {
+    json ext = {{"KHR_materials_transmission", {{"transmissionFactor", transmission}}}};
+    for (auto& [k, v] : more.items()) ext[k] = v;
+    return f.material({{"pbrMetallicRoughness",
+                        {{"baseColorFactor", {0.9, 0.9, 0.8, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.0}}},
+                       {"extensions", ext}});
+  };
+  const int window = glass(1.0, json::object());
+  const int water =
+      glass(1.0, {{"KHR_materials_ior", {{"ior", 1.33}}}, {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}});
+  const int frosted = glass(0.5, {{"KHR_materials_volume", {{"thicknessFactor", 0.1}}}});
+  const int mesh = f.mesh({unit_quad(f, window), unit_quad(f, water), unit_quad(f, frosted)});
+  f.roots({f.node({{"mesh", mesh}})});
+  const std::string path = dir.write("glass.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  ASSERT_EQ(s.materials.size(), 3u);
+  const double r0 = 0.04;  // ((1.5 - 1) / (1.5 + 1))^2
+  EXPECT_EQ(s.materials[0].rho, rgb(0.0));
+  EXPECT_NEAR(s.materials[0].kt.r, 0.9 * (1 - r0), 1e-12);
+  EXPECT_NEAR(s.materials[0].kr.b, 0.8 * r0, 1e-12);
+  EXPECT_EQ(s.materials[0].ior, 1.0);
+  EXPECT_FALSE(s.materials[0].fresnel);
+  EXPECT_NEAR(s.materials[1].kt.g, 0.9, 1e-12);
+  EXPECT_EQ(s.materials[1].kr, rgb(0.0));
+  EXPECT_EQ(s.materials[1].ior, 1.33);
+  EXPECT_TRUE(s.materials[1].fresnel);
+  EXPECT_NEAR(s.materials[2].rho.r, 0.45, 1e-12);
+  EXPECT_NEAR(s.materials[2].kt.r, 0.45, 1e-12);
+  EXPECT_EQ(s.materials[2].ior, 1.5);
+  EXPECT_EQ(count_warnings(report, "not supported"), 0) << ::testing::PrintToString(report.warnings);
+  // An index out of its range is named.
+  f.doc["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = 0.5;
+  EXPECT_NE(error_of(dir.write("bad.gltf", f.gltf_text())).find("materials[1]: ior must be a number from 1 to 10"),
+            std::string::npos);
 }
 
 TEST(Gltf, IgnoredFeaturesAreWarnedAboutOncePerKind) {
