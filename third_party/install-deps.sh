@@ -9,7 +9,7 @@ packages=(
   libglfw3-dev libglm-dev libosmesa6-dev libimgui-dev libopenmesh-dev
   libembree-dev libtbb-dev python3-glad libgtest-dev
   libstb-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libpolyclipping-dev
-  libtinygltf-dev libtinyexr-dev libnanoflann-dev libassimp-dev assimp-testmodels
+  libtinygltf-dev libtinyexr-dev libnanoflann-dev libassimp-dev assimp-testmodels libdraco-dev
   ninja-build xvfb xauth x11-utils libx11-dev
 )
 

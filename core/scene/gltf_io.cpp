@@ -21,7 +21,9 @@
 // Debian's libtinygltf.so holds the implementation (TINYGLTF_IMPLEMENTATION
 // is not defined here); the header only declares it.
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
+#include "scene/draco_mesh.h"
 #include "scene/reader_support.h"
 #include "scene/texture.h"
 
@@ -96,6 +98,50 @@ void check_glb(const std::string& bytes, const std::string& path) {
       throw load_error(path + ": truncated glTF binary: the BIN chunk (" + std::to_string(bin_length) +
                        " bytes) runs past the end");
   }
+}
+
+// tinygltf (Debian's is built without Draco) refuses the accessors of a
+// Draco-compressed primitive, which have no bufferView. Each is given the
+// compressed stream's bufferView, which is never read through them: the
+// reader decodes the stream instead. Text that is not JSON is left as it
+// is, for tinygltf to report.
+std::string place_draco_accessors(const std::string& text) {
+  nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.contains("meshes") || !doc.contains("accessors")) return text;
+  nlohmann::json& accessors = doc["accessors"];
+  bool changed = false;
+  auto place = [&](const nlohmann::json& accessor, const nlohmann::json& view) {
+    if (!accessor.is_number_unsigned() || accessor.get<std::size_t>() >= accessors.size()) return;
+    nlohmann::json& a = accessors[accessor.get<std::size_t>()];
+    if (a.is_object() && !a.contains("bufferView")) {
+      a["bufferView"] = view;
+      changed = true;
+    }
+  };
+  for (const nlohmann::json& mesh : doc["meshes"]) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (const nlohmann::json& prim : mesh["primitives"]) {
+      if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object()) continue;
+      const auto draco = prim["extensions"].find("KHR_draco_mesh_compression");
+      if (draco == prim["extensions"].end() || !draco->is_object() || !draco->contains("bufferView")) continue;
+      const nlohmann::json& view = (*draco)["bufferView"];
+      if (prim.contains("indices")) place(prim["indices"], view);
+      if (prim.contains("attributes") && prim["attributes"].is_object())
+        for (const auto& [name, accessor] : prim["attributes"].items()) place(accessor, view);
+    }
+  }
+  return changed ? doc.dump() : text;
+}
+
+// The same in a glTF binary: its JSON chunk replaced.
+std::string place_draco_accessors_in_glb(const std::string& bytes) {
+  const std::uint32_t json_length = u32_at(bytes, 12);
+  std::string text = place_draco_accessors(bytes.substr(20, json_length));
+  while (text.size() % 4) text += ' ';
+  const std::string rest = bytes.substr(20 + std::size_t(json_length));
+  auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  return bytes.substr(0, 8) + u32(std::uint32_t(20 + text.size() + rest.size())) + u32(std::uint32_t(text.size())) +
+         "JSON" + text + rest;
 }
 
 // One primitive as triangles, in the mesh's own coordinates.
@@ -469,6 +515,37 @@ struct gltf_reader {
 
   // ---- meshes ---------------------------------------------------------
 
+  // The Draco stream of a compressed primitive, decoded with the attributes
+  // the primitive uses (POSITION, NORMAL, TEXCOORD_n).
+  draco_mesh decode_draco(const tinygltf::Value& extension, const tinygltf::Primitive& prim, const std::string& at) {
+    const std::string where = at + ".extensions.KHR_draco_mesh_compression";
+    if (!extension.Has("bufferView") || !extension.Get("bufferView").IsNumber()) fail(where, "needs a 'bufferView'");
+    const int view = extension.Get("bufferView").GetNumberAsInt();
+    if (view < 0 || view >= int(m.bufferViews.size()))
+      fail(where, "bufferView " + std::to_string(view) + " does not exist (the file has " +
+                      std::to_string(m.bufferViews.size()) + ")");
+    const std::uint64_t length = m.bufferViews[std::size_t(view)].byteLength;
+    const auto* bytes = view_bytes(view, 0, length, where);
+    std::map<int, int> wanted;
+    const tinygltf::Value& ids = extension.Get("attributes");
+    for (const auto& [name, accessor] : prim.attributes) {
+      if (!ids.Has(name)) continue;
+      if (!ids.Get(name).IsNumber()) fail(where, "attribute '" + name + "' needs a number");
+      const int components = name == "POSITION" || name == "NORMAL" ? 3 : name.rfind("TEXCOORD_", 0) == 0 ? 2 : 0;
+      if (components > 0) wanted[ids.Get(name).GetNumberAsInt()] = components;
+    }
+    if (!ids.Has("POSITION")) fail(where, "has no POSITION");
+    draco_mesh out;
+    if (std::string e = decode_draco_mesh(std::string_view(reinterpret_cast<const char*>(bytes), length), wanted, out);
+        !e.empty())
+      fail(where, e);
+    for (const std::array<int, 3>& t : out.triangles)
+      for (int v : t)
+        if (v < 0 || std::size_t(v) >= out.points)
+          fail(where, "a triangle names point " + std::to_string(v) + " of " + std::to_string(out.points));
+    return out;
+  }
+
   const std::vector<primitive_data>& mesh(int index, const std::string& where) {
     if (auto it = meshes.find(index); it != meshes.end()) return it->second;
     if (index < 0 || index >= int(m.meshes.size()))
@@ -500,10 +577,34 @@ struct gltf_reader {
         continue;
       }
       primitive_data d;
-      d.positions = read_vectors<3>(position, -1, at + ".attributes.POSITION");
+      // KHR_draco_mesh_compression: the attributes and indices come from
+      // the compressed stream, not from the accessors.
+      const auto draco = prim.extensions.find("KHR_draco_mesh_compression");
+      draco_mesh decoded;
+      auto draco_id = [&](const std::string& name) {
+        const tinygltf::Value& ids = draco->second.Get("attributes");
+        return ids.Has(name) && ids.Get(name).IsNumber() ? ids.Get(name).GetNumberAsInt() : -1;
+      };
+      if (draco != prim.extensions.end()) decoded = decode_draco(draco->second, prim, at);
+      auto vectors = [&]<int n>(const std::string& name, int accessor, int count) {
+        if (draco == prim.extensions.end()) return read_vectors<n>(accessor, count, at + ".attributes." + name);
+        std::vector<glm::vec<n, double>> out(decoded.points);
+        const std::vector<double>& values = decoded.attributes.at(draco_id(name));
+        for (std::size_t i = 0; i < out.size(); ++i)
+          for (int c = 0; c < n; ++c) {
+            const double x = values[i * n + std::size_t(c)];
+            if (!std::isfinite(x) || std::abs(x) > max_file_number)
+              fail(at + ".extensions.KHR_draco_mesh_compression",
+                   name + " of point " + std::to_string(i) + " is out of range (" + format_value(x) + ")");
+            out[i][c] = x;
+          }
+        return out;
+      };
+      d.positions = vectors.template operator()<3>("POSITION", position, -1);
       const int count = int(d.positions.size());
-      if (const int normal = attribute("NORMAL"); normal >= 0) {
-        d.normals = read_vectors<3>(normal, count, at + ".attributes.NORMAL");
+      if (const int normal = attribute("NORMAL");
+          normal >= 0 && (draco == prim.extensions.end() || draco_id("NORMAL") >= 0)) {
+        d.normals = vectors.template operator()<3>("NORMAL", normal, count);
         for (vec3& n : d.normals) n = glm::length(n) > 0.0 ? glm::normalize(n) : vec3(0.0);
       }
       if (prim.material >= int(m.materials.size()))
@@ -520,8 +621,8 @@ struct gltf_reader {
       }
       if (textured) {
         const std::string set = "TEXCOORD_" + std::to_string(texcoord);
-        if (const int uv = attribute(set); uv >= 0) {
-          d.uvs = read_vectors<2>(uv, count, at + ".attributes." + set);
+        if (const int uv = attribute(set); uv >= 0 && (draco == prim.extensions.end() || draco_id(set) >= 0)) {
+          d.uvs = vectors.template operator()<2>(set, uv, count);
           for (vec2& t : d.uvs) t.y = 1.0 - t.y;  // glTF's v runs down the image, Bounce's up
         } else {
           textured = false;
@@ -531,7 +632,9 @@ struct gltf_reader {
       d.material = scene_material(prim.material, textured);
 
       std::vector<int> indices;
-      if (prim.indices >= 0) {
+      if (draco != prim.extensions.end()) {
+        for (const std::array<int, 3>& t : decoded.triangles) indices.insert(indices.end(), t.begin(), t.end());
+      } else if (prim.indices >= 0) {
         const std::string iat = at + ".indices";
         const std::vector<double> flat = read_accessor(prim.indices, TINYGLTF_TYPE_SCALAR, iat);
         const int type = m.accessors[prim.indices].componentType;
@@ -734,11 +837,11 @@ struct gltf_reader {
 
   void read() {
     static const std::set<std::string> supported = {
-        "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_lights_punctual",
+        "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_draco_mesh_compression",
         "KHR_materials_transmission",      "KHR_materials_ior",     "KHR_materials_volume"};
     // Extensions whose geometry Bounce cannot read: ignoring them would
     // give garbage, not an approximation.
-    static const std::set<std::string> unreadable = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+    static const std::set<std::string> unreadable = {"EXT_meshopt_compression"};
     for (const std::string& e : m.extensionsRequired)
       if (unreadable.count(e)) fail("extensionsRequired", "'" + e + "' (compressed geometry) is not supported");
     for (const std::string& e : m.extensionsUsed) {
@@ -801,6 +904,8 @@ gltf_read_result read_gltf(const std::string& path, std::vector<material>& mater
       throw load_error(path + (bytes->empty() ? ": empty file"
                                               : ": neither a glTF binary (it does not start with 'glTF') nor "
                                                 "glTF JSON (it does not start with '{')"));
+    if (bytes->find("KHR_draco_mesh_compression") != std::string::npos)
+      *bytes = binary ? place_draco_accessors_in_glb(*bytes) : place_draco_accessors(*bytes);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_image_bytes, nullptr);
     tinygltf::Model model;

@@ -9,6 +9,8 @@
 #include <limits>
 #include <numbers>
 
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 #include <nlohmann/json.hpp>
@@ -607,6 +609,105 @@ TEST(Gltf, PunctualLightsArePlacedByTheirNodes) {
   bad.doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = -1;
   EXPECT_NE(error_of(dir.write("negative.gltf", bad.gltf_text())).find("lights[0]: color and intensity"),
             std::string::npos);
+}
+
+// KHR_draco_mesh_compression: the primitive's geometry comes from the Draco
+// stream (here written by libdraco's own encoder, positions quantised to 14
+// bits), not from its accessors, which have no bufferView.
+TEST(Gltf, DracoCompressedMeshesAreDecoded) {
+  const std::array<float, 3> corners[4] = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  const std::array<float, 2> uvs[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  const int faces[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(2);
+  const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  const int tex = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+  for (int f = 0; f < 2; ++f) {
+    const int* v = faces[f];
+    builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), corners[v[0]].data(), corners[v[1]].data(),
+                                      corners[v[2]].data());
+    builder.SetAttributeValuesForFace(tex, draco::FaceIndex(f), uvs[v[0]].data(), uvs[v[1]].data(), uvs[v[2]].data());
+  }
+  std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  ASSERT_TRUE(mesh);
+  draco::Encoder encoder;
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+  draco::EncoderBuffer encoded;
+  ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+
+  gltf_file f;
+  f.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  f.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  const int view = f.view(encoded.data(), encoded.size());
+  auto accessor = [&](const char* type, int component, int count) {
+    f.doc["accessors"].push_back({{"componentType", component}, {"count", count}, {"type", type}});
+    return int(f.doc["accessors"].size()) - 1;
+  };
+  const int position = accessor("VEC3", 5126, int(mesh->num_points()));
+  f.doc["accessors"][position]["min"] = {0, 0, 0};
+  f.doc["accessors"][position]["max"] = {2, 1, 0};
+  const json prim = {
+      {"attributes", {{"POSITION", position}, {"TEXCOORD_0", accessor("VEC2", 5126, int(mesh->num_points()))}}},
+      {"indices", accessor("SCALAR", 5125, 6)},
+      {"extensions",
+       {{"KHR_draco_mesh_compression",
+         {{"bufferView", view},
+          {"attributes",
+           {{"POSITION", mesh->attribute(pos)->unique_id()}, {"TEXCOORD_0", mesh->attribute(tex)->unique_id()}}}}}}}};
+  f.doc["images"] = {{{"uri", "data:image/png;base64," + base64(png_2x2())}}};
+  f.doc["textures"] = {{{"source", 0}}};
+  json with_material = prim;
+  with_material["material"] = f.material(
+      {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}, {"baseColorTexture", {{"index", 0}}}}}});
+  f.roots({f.node({{"mesh", f.mesh({with_material})}})});
+  scratch_dir dir;
+  for (const std::string name : {"draco.gltf", "draco.glb"}) {
+    const std::string path = dir.write(name, name.ends_with(".glb") ? f.glb() : f.gltf_text());
+    scene s;
+    load_report report;
+    ASSERT_TRUE(load(path, s, report)) << name;
+    const polygon_mesh& m = only_mesh(s);
+    ASSERT_EQ(m.faces.size(), 2u) << name;
+    double area = 0.0;
+    for (const polygon_face& face : m.faces) {
+      const vec3 a = m.positions[std::size_t(face.position[0])], b = m.positions[std::size_t(face.position[1])],
+                 c = m.positions[std::size_t(face.position[2])];
+      area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    EXPECT_NEAR(area, 2.0, 1e-3) << name;  // 14-bit positions over a range of 2
+    // uv (1, 0) in glTF is the image's bottom right: Bounce's (1, 1) is at corner (2, 1).
+    const auto uv = uv_at(m, vec3(2, 1, 0));
+    ASSERT_TRUE(uv) << name;
+    EXPECT_NEAR(uv->x, 1.0, 1.0 / 4096);  // texture coordinates quantised to 12 bits
+    EXPECT_NEAR(uv->y, 1.0, 1.0 / 4096);
+    EXPECT_EQ(count_warnings(report, "not supported"), 0) << ::testing::PrintToString(report.warnings);
+  }
+  // A stream that is not Draco is named.
+  gltf_file bad = f;
+  bad.bin.replace(0, 8, "notdraco");
+  EXPECT_NE(error_of(dir.write("bad.gltf", bad.gltf_text())).find("KHR_draco_mesh_compression: not a Draco stream"),
+            std::string::npos);
+}
+
+// The Khronos sample 2CylinderEngine, Draco-compressed (assimp-testmodels):
+// every primitive decodes to the triangles its index accessor counts.
+TEST(Gltf, DracoCompressedSampleOpensWhole) {
+  const std::string path = "/usr/share/assimp/models/glTF2/draco/2CylinderEngine.gltf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const json doc = json::parse(test_support::read_text(path));
+  std::size_t expected = 0;
+  for (const json& node : doc["nodes"])
+    if (node.contains("mesh"))
+      for (const json& prim : doc["meshes"][node["mesh"].get<std::size_t>()]["primitives"])
+        expected += doc["accessors"][prim["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  std::size_t faces = 0;
+  for (const surface& surf : s.surfaces) faces += std::get<polygon_mesh>(surf.geometry).faces.size();
+  EXPECT_EQ(faces + report.dropped_faces, expected);
+  std::printf("2CylinderEngine: %zu triangles, %zu degenerate dropped\n", faces, std::size_t(report.dropped_faces));
 }
 
 // ---- bad files -----------------------------------------------------------
