@@ -28,10 +28,10 @@ struct gltf_read_result {
 // Reads `path` (the scene's default scene, or scene 0): triangles with
 // their node transforms applied, base colour as rho (texture included),
 // smooth metals as mirrors, transmission as glass, emission as ke (its
-// texture as emission_texture), KHR_lights_punctual lights, Draco meshes. New materials and textures are appended to
-// the lists and faces refer to them by index. What Bounce cannot use (metallic, roughness, normal maps, cameras,
-// animation,
-// ...) gets one warning per kind. Throws load_error.
+// texture as emission_texture), KHR_lights_punctual lights, Draco meshes.
+// New materials and textures are appended to the lists and faces refer to
+// them by index. What Bounce cannot use (rough metals, normal maps,
+// cameras, animation, ...) gets one warning per kind. Throws load_error.
 gltf_read_result read_gltf(const std::string& path, std::vector<material>& materials, std::vector<texture>& textures);
 
 }  // namespace bounce
