@@ -52,6 +52,8 @@ uniform vec3 checker1;
 uniform float checker_scale;  // squares per unit of uv
 uniform vec3 inverse_mean;    // 1 / mean(texture), 0 where the mean is 0
 uniform vec3 emitted;         // the material's ke, the mean of its emission
+uniform float alpha;         // a cut-out's: no surface where the texture's alpha x alpha < alpha_cutoff
+uniform float alpha_cutoff;  // 0: opaque
 uniform int emission_mode;    // 1: the emission follows emission_image (material::emission_texture)
 uniform sampler2D emission_image;
 uniform vec3 emission_inverse_mean;
@@ -271,7 +273,9 @@ void main() {
   vec3 glow = emitted;
   if (emission_mode == 1) glow *= texture(emission_image, vec2(uv.x, 1.0 - uv.y)).rgb * emission_inverse_mean;
   if (texture_mode == 1) {
-    vec3 detail = texture(image, vec2(uv.x, 1.0 - uv.y)).rgb * inverse_mean;
+    vec4 texel = texture(image, vec2(uv.x, 1.0 - uv.y));
+    if (alpha_cutoff > 0.0 && texel.a * alpha < alpha_cutoff) discard;  // RGB textures read alpha 1
+    vec3 detail = texel.rgb * inverse_mean;
     vertex_radiance = glow + (vertex_radiance - emitted) * detail;
   } else if (texture_mode == 2) {
     vertex_radiance = glow + (vertex_radiance - emitted) * checker(uv) * inverse_mean;

@@ -198,6 +198,8 @@ mesh_arrays make_mesh_arrays(const patch_mesh& mesh, std::shared_ptr<const scene
     material_run run;
     run.texture = texture_of(&m);
     run.emission_texture = emission_of(&m);
+    run.alpha = float(m.alpha);
+    run.alpha_cutoff = float(m.alpha_cutoff);
     run.emitted = glm::vec3(m.ke);
     run.first = out.indices.size();
     for (std::size_t e : elements) emit(e);

@@ -23,12 +23,13 @@ namespace bounce::gl {
 // program: a texture, or mirror and glass (then one run per surface, the
 // surface's reflection probe). A range of mesh_arrays::indices.
 struct material_run {
-  int texture = -1;           // index into the scene's textures, or -1
-  int emission_texture = -1;  // the same, for the emission's detail (material::emission_texture)
-  int probe = -1;             // index into mesh_arrays::probes, or -1
-  glm::vec3 emitted{0.0f};    // the material's ke: the part of B the texture leaves alone
-  std::size_t first = 0;      // first index
-  std::size_t count = 0;      // indices
+  int texture = -1;                         // index into the scene's textures, or -1
+  int emission_texture = -1;                // the same, for the emission's detail (material::emission_texture)
+  float alpha = 1.0f, alpha_cutoff = 0.0f;  // a cut-out's (material::alpha_cutoff): 0, opaque
+  int probe = -1;                           // index into mesh_arrays::probes, or -1
+  glm::vec3 emitted{0.0f};                  // the material's ke: the part of B the texture leaves alone
+  std::size_t first = 0;                    // first index
+  std::size_t count = 0;                    // indices
 };
 
 // A specular surface (kr or kt > 0) as the live view approximates it: the

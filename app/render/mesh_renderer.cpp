@@ -141,7 +141,17 @@ void mesh_renderer::upload_textures(const std::shared_ptr<const scene>& source) 
       glGenTextures(1, &g.id);
       glBindTexture(GL_TEXTURE_2D, g.id);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, width, height, 0, GL_RGB, GL_FLOAT, texels);
+      if (reduced.empty() && t.alpha.size() == std::size_t(width) * std::size_t(height)) {
+        // With its coverage, for cut-outs (a texture halved to fit loses it).
+        std::vector<float> rgba(t.alpha.size() * 4);
+        for (std::size_t k = 0; k < t.alpha.size(); ++k) {
+          for (int c = 0; c < 3; ++c) rgba[4 * k + std::size_t(c)] = texels[3 * k + std::size_t(c)];
+          rgba[4 * k + 3] = t.alpha[k];
+        }
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, width, height, 0, GL_RGBA, GL_FLOAT, rgba.data());
+      } else {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB16F, width, height, 0, GL_RGB, GL_FLOAT, texels);
+      }
       glGenerateMipmap(GL_TEXTURE_2D);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
@@ -362,6 +372,8 @@ void mesh_renderer::draw_scene(const glm::mat4& view_projection, const glm::vec3
         const bool glows = run.emission_texture >= 0 && std::size_t(run.emission_texture) < textures_.size() &&
                            textures_[std::size_t(run.emission_texture)].id;
         glUniform1i(glGetUniformLocation(p, "emission_mode"), glows ? 1 : 0);
+        glUniform1f(glGetUniformLocation(p, "alpha"), run.alpha);
+        glUniform1f(glGetUniformLocation(p, "alpha_cutoff"), run.alpha_cutoff);
         if (glows) {
           const gl_texture& t = textures_[std::size_t(run.emission_texture)];
           glActiveTexture(GL_TEXTURE2);

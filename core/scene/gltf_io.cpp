@@ -503,9 +503,17 @@ struct gltf_reader {
                                        "TEXCOORD_" +
                                        std::to_string(base.texCoord) + " (and in every other material)");
       }
-      if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
+      if (g.alphaMode == "MASK") {
+        // A cut-out: no surface where the base colour's alpha is below the cutoff.
+        if (!(g.alphaCutoff >= 0.0 && g.alphaCutoff <= 1.0)) fail(who, "alphaCutoff must be from 0 to 1");
+        const double alpha = pbr.baseColorFactor[3];
+        if (!(alpha >= 0.0 && alpha <= 1.0)) fail(who, "baseColorFactor's alpha must be from 0 to 1");
+        out.alpha = alpha;
+        out.alpha_cutoff = g.alphaCutoff;
+      } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
         warn_once("alpha",
                   who + ": alphaMode " + g.alphaMode + " ignored (and in every other material): surfaces are opaque");
+      }
       out.two_sided = g.doubleSided;
     }
     materials.push_back(out);

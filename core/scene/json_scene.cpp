@@ -110,7 +110,9 @@ texture read_texture(const json_reader& r, const std::string& name, const json& 
 material read_material(const json_reader& r, const std::string& name, const json& j,
                        const std::map<std::string, int>& texture_by_name) {
   const std::string where = "materials." + name;
-  r.only_keys(j, where, {"rho", "ke", "kr", "kt", "ior", "fresnel", "specular", "shininess", "texture", "two_sided"});
+  r.only_keys(
+      j, where,
+      {"rho", "ke", "kr", "kt", "ior", "fresnel", "specular", "shininess", "texture", "two_sided", "alpha_cutoff"});
   material m;
   m.name = name;
   if (j.contains("rho")) m.rho = r.vec<3>(j["rho"], where + ".rho");
@@ -122,6 +124,10 @@ material read_material(const json_reader& r, const std::string& name, const json
   if (j.contains("specular")) m.specular = r.vec<3>(j["specular"], where + ".specular");
   if (j.contains("shininess")) m.shininess = r.number(j["shininess"], where + ".shininess");
   if (j.contains("two_sided")) m.two_sided = r.boolean(j["two_sided"], where + ".two_sided");
+  if (j.contains("alpha_cutoff")) {
+    m.alpha_cutoff = r.number(j["alpha_cutoff"], where + ".alpha_cutoff");
+    if (!(m.alpha_cutoff >= 0.0 && m.alpha_cutoff <= 1.0)) r.fail(where + ".alpha_cutoff", "must be from 0 to 1");
+  }
   if (j.contains("texture")) {
     std::string t = r.string(j["texture"], where + ".texture");
     auto it = texture_by_name.find(t);

@@ -53,15 +53,22 @@ texture decode_image_texture(std::string_view bytes, const std::string& name, co
                              const std::string& what) {
   int w = 0, h = 0, channels = 0;
   unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                static_cast<int>(bytes.size()), &w, &h, &channels, 3);
+                                                static_cast<int>(bytes.size()), &w, &h, &channels, 4);
   if (!pixels) throw load_error(where + ": cannot decode " + what + ": " + stbi_failure_reason());
   texture t;
   t.name = name;
   t.kind = texture_kind::image;
   t.width = w;
   t.height = h;
-  t.texels.resize(static_cast<std::size_t>(w) * h * 3);
-  for (std::size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = static_cast<float>(srgb_to_linear(pixels[i] / 255.0));
+  const std::size_t n = static_cast<std::size_t>(w) * h;
+  t.texels.resize(n * 3);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) t.texels[3 * i + c] = static_cast<float>(srgb_to_linear(pixels[4 * i + c] / 255.0));
+  // Coverage is linear; kept only where the image has it (grey + alpha, RGBA).
+  if (channels == 2 || channels == 4) {
+    t.alpha.resize(n);
+    for (std::size_t i = 0; i < n; ++i) t.alpha[i] = pixels[4 * i + 3] / 255.0f;
+  }
   stbi_image_free(pixels);
   return t;
 }

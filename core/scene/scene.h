@@ -25,6 +25,7 @@ struct texture {
   int width = 0;
   int height = 0;
   std::vector<float> texels;
+  std::vector<float> alpha;  // width*height coverage in [0, 1] when the image has it, else empty
   // checker: squares of color0/color1, `scale` squares per unit of uv
   rgb color0{1.0};
   rgb color1{0.0};
@@ -46,6 +47,10 @@ struct material {
   // ke * t(uv) / mean(t), so ke stays the mean radiance (the power) and the
   // glow follows the texture (a label, a screen). -1: uniform.
   int emission_texture = -1;
+  // A cut-out (glTF's alphaMode MASK): where the texture's alpha times
+  // `alpha` is below `alpha_cutoff`, there is no surface. 0: opaque.
+  double alpha = 1.0;
+  double alpha_cutoff = 0.0;
   bool two_sided = false;  // both sides receive, reflect and emit (two_sided.h)
 };
 

@@ -15,6 +15,7 @@
 #include "scene/framing.h"
 #include "scene/scene_info.h"
 #include "scene/tessellate.h"
+#include "scene/texture.h"
 
 namespace bounce {
 namespace {
@@ -172,6 +173,30 @@ void analytic_occluded(const RTCOccludedFunctionNArguments* args) {
   }
 }
 
+// A triangle mesh with cut-out materials (material::alpha_cutoff): hits in
+// their holes are rejected, for camera, bounce and shadow rays alike.
+// Copies: the ray scene may outlive the scene it was built from.
+struct cut_out_mesh {
+  std::vector<glm::ivec3> triangles;
+  std::vector<vec2> uvs;
+  std::vector<int> materials;
+  std::vector<material> table;    // the scene's materials
+  std::vector<texture> textures;  // the scene's, those of cut-out materials only (the rest left empty)
+};
+
+void reject_holes(const RTCFilterFunctionNArguments* args) {
+  const auto* mesh = static_cast<const cut_out_mesh*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    const double u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const glm::ivec3 t = mesh->triangles[prim];
+    const vec2 uv = (1 - u - v) * mesh->uvs[std::size_t(t[0])] + u * mesh->uvs[std::size_t(t[1])] +
+                    v * mesh->uvs[std::size_t(t[2])];
+    if (cut_out(mesh->table[std::size_t(mesh->materials[prim])], mesh->textures, uv)) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 // Per Embree geometry: either a triangle mesh (with what shading needs) or
@@ -182,6 +207,7 @@ struct ray_scene::embree_state {
     int surface = -1;
     triangle_mesh triangles;                // empty for analytic shapes
     std::unique_ptr<analytic_shape> shape;  // stable address: Embree keeps a pointer
+    std::unique_ptr<cut_out_mesh> holes;    // the same, when some of its materials cut out
   };
   std::vector<geometry> geometries;  // indexed by Embree geomID
 
@@ -253,6 +279,22 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
                                                                  3 * sizeof(unsigned), g.triangles.triangles.size()));
       for (std::size_t k = 0; k < g.triangles.triangles.size(); ++k)
         for (int c = 0; c < 3; ++c) idx[3 * k + c] = unsigned(g.triangles.triangles[k][c]);
+      const bool cuts = std::any_of(g.triangles.materials.begin(), g.triangles.materials.end(),
+                                    [&](int m) { return s.materials[std::size_t(m)].alpha_cutoff > 0.0; });
+      if (cuts && g.triangles.uvs.size() == g.triangles.positions.size()) {
+        g.holes = std::make_unique<cut_out_mesh>();
+        g.holes->triangles = g.triangles.triangles;
+        g.holes->uvs = g.triangles.uvs;
+        g.holes->materials = g.triangles.materials;
+        g.holes->table = s.materials;
+        g.holes->textures.resize(s.textures.size());
+        for (const material& m : s.materials)
+          if (m.alpha_cutoff > 0.0 && m.texture >= 0 && std::size_t(m.texture) < s.textures.size())
+            g.holes->textures[std::size_t(m.texture)] = s.textures[std::size_t(m.texture)];
+        rtcSetGeometryUserData(geometry, g.holes.get());
+        rtcSetGeometryIntersectFilterFunction(geometry, reject_holes);
+        rtcSetGeometryOccludedFilterFunction(geometry, reject_holes);
+      }
     }
     state_->add_emitters(s, g);
     rtcCommitGeometry(geometry);

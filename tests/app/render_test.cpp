@@ -696,6 +696,33 @@ TEST(HeadlessImages, EmissiveTexturesGlowAsInTheStill) {
   EXPECT_LT(difference, 4.0);
 }
 
+// A cut-out (material alpha_cutoff over a texture's alpha): the view draws
+// nothing in its holes, as the still, and shows what is behind them.
+TEST(HeadlessImages, CutOutsAreHolesInTheViewAsInTheStill) {
+  scratch_dir dir;
+  // 2 x 2 texels, white; the right column clear.
+  const unsigned char texels[] = {255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0};
+  std::string error;
+  ASSERT_TRUE(write_png(dir.path("leaf.png"), 2, 2, 4, texels, error)) << error;
+  const std::string scene = dir.write("leaf.json", R"({
+  "camera": {"eye": [0.5, 0.5, 3], "target": [0.5, 0.5, 0], "fov": 18.9246, "size": [64, 64]},
+  "textures": {"leaf": {"image": "leaf.png"}},
+  "materials": {"leaf": {"rho": [0.5, 0.5, 0.5], "ke": [1, 1, 1], "texture": "leaf", "alpha_cutoff": 0.5},
+                "wall": {"rho": [0, 0, 0], "ke": [0, 0, 1]}},
+  "surfaces": [{"polygon": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], "uv": [[0, 0], [1, 0], [1, 1], [0, 1]], "material": "leaf"},
+               {"polygon": [[-1, -1, -1], [2, -1, -1], [2, 2, -1], [-1, 2, -1]], "material": "wall"}]})");
+  ASSERT_EQ(run("render " + scene + " --out " + dir.path("view.pfm")), 0);
+  ASSERT_EQ(run("trace --spp 1 " + scene + " --out " + dir.path("still.pfm")), 0);
+  for (const char* name : {"view.pfm", "still.pfm"}) {
+    const image picture = read(dir.path(name));
+    // A quarter in from each side, mid-height: the leaf, then the wall.
+    const rgb leaf = rgb(picture.at(16, 32)), hole = rgb(picture.at(48, 32));
+    EXPECT_NEAR(leaf.r, 1.0, 0.05) << name;
+    EXPECT_NEAR(hole.r, 0.0, 0.02) << name;
+    EXPECT_NEAR(hole.b, 1.0, 0.05) << name;
+  }
+}
+
 TEST(HeadlessImages, MirrorAndGlassShowWhatTheStillShows) {
   // The live view draws mirrors and glass from cube maps taken at the
   // object's centre and looked up where the ray meets the room's box

@@ -710,6 +710,68 @@ TEST(Gltf, DracoCompressedSampleOpensWhole) {
   std::printf("2CylinderEngine: %zu triangles, %zu degenerate dropped\n", faces, std::size_t(report.dropped_faces));
 }
 
+// A 2x2 RGBA PNG: white, the left column opaque, the right one clear.
+std::string png_half_clear() {
+  const unsigned char pixels[] = {255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0};
+  std::string out;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
+      },
+      &out, 2, 2, 4, pixels, 8);
+  return out;
+}
+
+// alphaMode MASK: a cut-out. The still sees through its holes (camera and
+// shadow rays alike); the alpha stays linear.
+TEST(Gltf, AlphaMaskIsACutOutInTheStill) {
+  scratch_dir dir;
+  gltf_file f;
+  f.doc["images"] = {{{"uri", "data:image/png;base64," + base64(png_half_clear())}}};
+  f.doc["textures"] = {{{"source", 0}}};
+  const int leaf =
+      f.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}},
+                  {"emissiveFactor", {1, 1, 1}},
+                  {"alphaMode", "MASK"},
+                  {"alphaCutoff", 0.5}});
+  const int wall =
+      f.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}}}, {"emissiveFactor", {0, 0, 1}}});
+  const int front = f.node({{"mesh", f.mesh({unit_quad(f, leaf)})}});
+  const int back = f.node({{"mesh", f.mesh({unit_quad(f, wall)})}, {"translation", {0, 0, -1}}, {"scale", {1, 1, 1}}});
+  f.roots({front, back});
+  const std::string path = dir.write("leaf.gltf", f.gltf_text());
+  scene s;
+  load_report report;
+  ASSERT_TRUE(load(path, s, report));
+  ASSERT_EQ(s.textures.size(), 1u);
+  ASSERT_EQ(s.textures[0].alpha.size(), 4u);
+  EXPECT_EQ(s.textures[0].alpha[0], 1.0f);
+  EXPECT_EQ(s.textures[0].alpha[1], 0.0f);
+  const material& m = s.materials[std::size_t(std::get<polygon_mesh>(s.surfaces[0].geometry).faces[0].material)];
+  EXPECT_EQ(m.alpha_cutoff, 0.5);
+  EXPECT_EQ(count_warnings(report, "alphaMode"), 0);
+  // Face on, through the texel centres: the left column shows the leaf,
+  // the right one the wall behind it. Seen from the front (camera at +z).
+  s.view.eye = vec3(0.5, 0.5, 3.0);
+  s.view.target = vec3(0.5, 0.5, 0.0);
+  s.view.up = vec3(0, 1, 0);
+  s.view.fov_y_degrees = 2.0 * std::atan(0.5 / 3.0) * 180.0 / std::numbers::pi;
+  s.view.width = s.view.height = 2;
+  s.sky = {};
+  const ray_scene rays(s);
+  trace_params p;
+  p.diffuse = diffuse_source::ambient;
+  const image still = trace_image(s, s.view, rays, nullptr, p);
+  for (int y = 0; y < 2; ++y) {
+    EXPECT_NEAR(still.at(0, y).r, 1.0, 1e-5) << y;  // the leaf
+    EXPECT_NEAR(still.at(1, y).r, 0.0, 1e-5) << y;  // through the hole: the blue wall
+    EXPECT_NEAR(still.at(1, y).b, 1.0, 1e-5) << y;
+  }
+  // A shadow ray through the hole is not blocked; through the leaf it is.
+  EXPECT_FALSE(rays.occluded(vec3(0.75, 0.5, 1.0), vec3(0.75, 0.5, -0.5)));
+  EXPECT_TRUE(rays.occluded(vec3(0.25, 0.5, 1.0), vec3(0.25, 0.5, -0.5)));
+}
+
 // ---- bad files -----------------------------------------------------------
 
 // A valid one-quad file to break in one place.
