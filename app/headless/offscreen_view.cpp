@@ -45,7 +45,13 @@ offscreen_view::offscreen_view(int width, int height, int samples)
   }
   renderer_ = std::make_unique<gl::mesh_renderer>();
   if (!renderer_->init(error_)) return;
+  // More samples than the GL offers leave the multisampled framebuffer
+  // without storage, and the picture black: take the most it offers.
+  GLint most = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &most);
+  if (samples_ > most) samples_ = most > 1 ? int(most) : 0;
   bytes_ = std::make_unique<target>(width, height, GL_RGBA8, samples_);
+  glBindFramebuffer(GL_FRAMEBUFFER, bytes_->msaa_fbo);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) error_ = "OSMesa: framebuffer incomplete";
 }
 

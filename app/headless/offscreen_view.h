@@ -28,6 +28,8 @@ class offscreen_view {
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
+  // The samples per pixel drawn: those asked for, or the most the GL offers.
+  int samples() const { return samples_; }
   gl::mesh_renderer& renderer() { return *renderer_; }
 
   // Draws and reads back RGBA8, top row first. `overlay`, when given, draws
