@@ -21,6 +21,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "base/whole_file.h"
 #include "bench/bench_rays.h"
 #include "bench/bench_references.h"
 #include "bench/bench_report.h"
@@ -164,10 +165,8 @@ int run_one_case(const suite_plan& plan, int index, const bench_options& options
             {"out_of_memory", out_of_memory},
             {"curves", curves}};
   const fs::path file = fs::path(out_dir) / "cases" / (std::to_string(index) + ".json");
-  std::ofstream out(file);
-  out << j.dump() << "\n";
-  if (!out) {
-    std::cerr << "error: " << file.string() << ": cannot write\n";
+  if (std::string e; !write_text(file.string(), j.dump() + "\n", e)) {
+    std::cerr << "error: " << e << "\n";
     return exit_input_error;
   }
   return exit_ok;
@@ -335,7 +334,7 @@ int run_bench_command(const bench_options& options) {
   results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const fs::path json_path = fs::path(options.out_dir) / "bench.json";
-  std::ofstream(json_path) << results.dump(1) << "\n";
+  if (std::string e; !write_text(json_path.string(), results.dump(1) + "\n", e)) std::cerr << "error: " << e << "\n";
   const std::string markdown = write_bench_report(results, options.out_dir);
   std::cout << "\n" << markdown << "\n";
   std::printf("bench: %zu runs in %.1f s; results in %s (bench.json, bench.csv, bench.md, one SVG plot per scene)\n",

@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
+#include "base/whole_file.h"
 #include "common/exit_code.h"
 #include "measure/ray_throughput.h"
 #include "scene/procedural.h"
@@ -175,11 +176,9 @@ int run_ray_bench(const bench_options& options) {
                 ray_scene::native_packet(16) ? "yes" : "no");
   md += notes;
   const fs::path json_path = fs::path(options.out_dir) / "rays.json", md_path = fs::path(options.out_dir) / "rays.md";
-  std::ofstream(json_path) << results.dump(1) << "\n";
-  std::ofstream md_out(md_path);
-  md_out << md;
-  if (!md_out) {
-    std::cerr << "error: " << md_path.string() << ": cannot write\n";
+  std::string error;
+  if (!write_text(json_path.string(), results.dump(1) + "\n", error) || !write_text(md_path.string(), md, error)) {
+    std::cerr << "error: " << error << "\n";
     return exit_input_error;
   }
   std::cout << "\n" << md << "\nbench: results in " << options.out_dir << " (rays.json, rays.md)\n";

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "base/whole_file.h"
 #include "measure/bench.h"
 
 namespace bounce {
@@ -89,8 +90,19 @@ std::vector<std::vector<bool>> front_of(const scene_curves& sc, bool radiosity_o
   return out;
 }
 
+// Text that becomes `path` whole when it goes out of scope (every way out
+// of the writers below), or an error on standard error.
+struct report_file {
+  std::string path;
+  std::ostringstream out;
+  ~report_file() {
+    if (std::string e; !write_text(path, out.str(), e)) std::cerr << "error: " << e << "\n";
+  }
+};
+
 void write_csv(const json& results, const std::string& out_dir) {
-  std::ofstream out(fs::path(out_dir) / "bench.csv");
+  report_file file{(fs::path(out_dir) / "bench.csv").string(), {}};
+  std::ostringstream& out = file.out;
   out << "scene,curve,method,solver,shadow_rays,hemicube_resolution,max_edge,patch_edge,elements,vertices,patches,"
          "run_wall_seconds,run_cpu_seconds,peak_mib,seconds,cpu_seconds,steps,rays,remaining,error,max_error,"
          "power_error,balance_error,residual,pareto\n";
@@ -141,7 +153,8 @@ void write_svg(const std::string& scene, const scene_curves& sc, const std::stri
       e_lo = std::min(e_lo, std::max(e, floor));
       e_hi = std::max(e_hi, std::max(e, floor));
     }
-  std::ofstream out(path);
+  report_file file{path, {}};
+  std::ostringstream& out = file.out;
   out << std::fixed << std::setprecision(1);  // coordinates to a tenth of a pixel: small files
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -568,7 +581,8 @@ std::string write_bench_report(const json& results, const std::string& out_dir) 
   growth_section(results, md);
   scale_section(results, md);
   failed_section(results, by_scene, md);
-  std::ofstream(fs::path(out_dir) / "bench.md") << md.str();
+  if (std::string e; !write_text((fs::path(out_dir) / "bench.md").string(), md.str(), e))
+    std::cerr << "error: " << e << "\n";
   return md.str();
 }
 

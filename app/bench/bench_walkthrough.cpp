@@ -11,6 +11,7 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
+#include "base/whole_file.h"
 #include "bench/bench_references.h"
 #include "common/exit_code.h"
 #include "measure/picture_judge.h"
@@ -199,26 +200,26 @@ int run_walkthrough_bench(const bench_options& options) {
           fixed(100.0 * r.residual, 3) + "%" + (r.converged ? "" : " (stopped by its time limit)") + ".\n\n" +
           "| | total time | per view | mean error | views |\n|---|---:|---:|---:|---:|\n" +
           "| radiosity: one solve, every view drawn | " + fixed(radiosity_total, 1) + " s (solve " +
-          fixed(r.solve_seconds, 1) + " s) | " + fixed(drawn / n, 2) + " s | " + percent_to_a_tenth(radiosity_sum / n) + " | " +
-          std::to_string(r.views.size()) + " |\n" + "| path tracer: each view to the same error | " +
+          fixed(r.solve_seconds, 1) + " s) | " + fixed(drawn / n, 2) + " s | " + percent_to_a_tenth(radiosity_sum / n) +
+          " | " + std::to_string(r.views.size()) + " |\n" + "| path tracer: each view to the same error | " +
           fixed(path_total, 1) + " s | " + fixed(traced / n, 2) + " s | " + percent_to_a_tenth(path_sum / n) + " | " +
           std::to_string(reached) + " of " + std::to_string(r.views.size()) + " reached it |\n\n" +
           "| view | radiosity error | drawn in | path tracer error | spp | traced in "
           "|\n|---:|---:|---:|---:|---:|---:|\n";
     for (std::size_t i = 0; i < r.views.size(); ++i) {
       const walkthrough_view& v = r.views[i];
-      md += "| " + std::to_string(i) + " | " + percent_to_a_tenth(v.radiosity_error) + " | " + fixed(v.radiosity_seconds, 2) +
-            " s | " + percent_to_a_tenth(v.path_error) + (v.path_reached ? "" : " (not reached)") + " | " +
-            std::to_string(v.path_spp) + " | " + fixed(v.path_seconds, 2) + " s |\n";
+      md += "| " + std::to_string(i) + " | " + percent_to_a_tenth(v.radiosity_error) + " | " +
+            fixed(v.radiosity_seconds, 2) + " s | " + percent_to_a_tenth(v.path_error) +
+            (v.path_reached ? "" : " (not reached)") + " | " + std::to_string(v.path_spp) + " | " +
+            fixed(v.path_seconds, 2) + " s |\n";
     }
     md += "\n";
   }
   results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::ofstream(fs::path(options.out_dir) / "walkthrough.json") << results.dump(1) << "\n";
-  std::ofstream md_out(fs::path(options.out_dir) / "walkthrough.md");
-  md_out << md;
-  if (!md_out) {
-    std::cerr << "error: " << options.out_dir << "/walkthrough.md: cannot write\n";
+  std::string error;
+  if (!write_text((fs::path(options.out_dir) / "walkthrough.json").string(), results.dump(1) + "\n", error) ||
+      !write_text((fs::path(options.out_dir) / "walkthrough.md").string(), md, error)) {
+    std::cerr << "error: " << error << "\n";
     return exit_input_error;
   }
   std::printf("bench: walkthrough in %.1f s; results in %s (walkthrough.json, walkthrough.md)\n",

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <iterator>
 #include <limits>
 
 #include <CLI/CLI.hpp>
@@ -129,10 +131,39 @@ std::string given_options(const CLI::App& command, std::span<const char* const> 
   return list;
 }
 
+namespace {
+
+// The file a path names, symbolic links followed as far as they exist.
+std::filesystem::path resolved(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  return ec ? std::filesystem::absolute(path).lexically_normal() : p;
+}
+
+}  // namespace
+
 std::string check_output_files(std::initializer_list<output_file> files) {
   for (const output_file& f : files)
     if (!f.path.empty())
       if (std::string e = check_output_path(f.option, f.path, f.picture); !e.empty()) return e;
+  for (auto a = files.begin(); a != files.end(); ++a)
+    for (auto b = std::next(a); b != files.end(); ++b)
+      if (!a->path.empty() && !b->path.empty() && resolved(a->path) == resolved(b->path))
+        return std::string(a->option) + " " + a->path + " and " + b->option + " " + b->path +
+               " name the same file: give each output its own";
+  return {};
+}
+
+std::string check_outputs_against_inputs(const std::vector<output_file>& outputs,
+                                         const std::vector<std::string>& inputs) {
+  for (const output_file& out : outputs) {
+    if (out.path.empty()) continue;
+    const std::filesystem::path target = resolved(out.path);
+    for (const std::string& in : inputs)
+      if (resolved(in) == target)
+        return std::string(out.option) + " " + out.path + " would overwrite " + in +
+               ", which the scene is read from: choose another name";
+  }
   return {};
 }
 

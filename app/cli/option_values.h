@@ -59,7 +59,16 @@ struct output_file {
   std::string path;
   bool picture = false;  // its extension must name a picture format
 };
+// Each output's folder exists and can be written, its file too if it
+// exists, its extension fits, and no two outputs name the same file (after
+// symbolic links).
 std::string check_output_files(std::initializer_list<output_file> files);
+
+// After loading: no output names a file the scene was read from (the
+// scene, its MTL, textures, buffers: load_report::inputs), after symbolic
+// links. An error message or an empty string.
+std::string check_outputs_against_inputs(const std::vector<output_file>& outputs,
+                                         const std::vector<std::string>& inputs);
 
 // Options of tone-mapped (PNG) output given while --out `out_path` names a
 // linear format: the first of `options` given, in a message, or an empty

@@ -98,7 +98,11 @@ std::string check_render_options(const CLI::App& command, render_options& option
 
 int run_render(const render_options& options) {
   scene s;
-  if (int code = load_for_command(options.scene, &options.camera, s); code != exit_ok) return code;
+  if (int code =
+          load_for_command(options.scene, &options.camera, s, nullptr,
+                           {{"--out", options.out_path}, {"--pfm", options.pfm_path}, {"--stats", options.stats_path}});
+      code != exit_ok)
+    return code;
   return render_scene(s, options);
 }
 
@@ -120,6 +124,9 @@ int render_scene(const scene& s, const render_options& options) {
     std::fprintf(stderr, "error: %s\n", view.error().c_str());
     return exit_input_error;
   }
+  if (options.msaa > 1 && view.samples() < options.msaa)
+    std::fprintf(stderr, "warning: --msaa %d: this GL draws at most %d samples per pixel; drawn with %d\n",
+                 options.msaa, view.samples(), view.samples());
   // The renderer takes the scene for its textures and background; `s` outlives it.
   const std::shared_ptr<const scene> source(&s, [](const scene*) {});
   view.renderer().upload(mesh, source);

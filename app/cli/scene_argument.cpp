@@ -33,7 +33,7 @@ void add_scene_argument(CLI::App& command, std::string& path) {
 // (exit_ok on success): a scene that cannot be used is an input error, an
 // override that makes the camera invalid a usage error.
 int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s,
-                     std::vector<std::string>* warnings) {
+                     std::vector<std::string>* warnings, const std::vector<output_file>& outputs) {
   load_report report;
   if (!load_scene(path.empty() ? default_scene_path : path, s, report)) {
     print_warnings(report);  // what was said before the failure often explains it
@@ -42,6 +42,10 @@ int load_for_command(const std::string& path, const camera_options* camera_overr
   }
   print_warnings(report);
   if (warnings) *warnings = report.warnings;
+  if (std::string e = check_outputs_against_inputs(outputs, report.inputs); !e.empty()) {
+    std::cerr << "error: " << e << "\n";
+    return exit_usage;
+  }
   if (camera_overrides) {
     // A camera file is a file that may be unusable (exit 1); the options
     // typed over it are the command line (exit 2).

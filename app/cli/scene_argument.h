@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/camera_options.h"
+#include "cli/option_values.h"
 #include "scene/scene.h"
 
 namespace CLI {
@@ -21,7 +22,10 @@ void add_scene_argument(CLI::App& command, std::string& path);
 // and applies the camera overrides (null: none); prints the warnings
 // (grouped: warning_groups.h), then any error, and returns its exit code
 // (exit_ok when loaded). `warnings`, when given, receives them one by one.
+// `outputs` are the files the command will write: one that would
+// overwrite a file the scene was read from is refused (exit 2) before any
+// work.
 int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s,
-                     std::vector<std::string>* warnings = nullptr);
+                     std::vector<std::string>* warnings = nullptr, const std::vector<output_file>& outputs = {});
 
 }  // namespace bounce

@@ -199,7 +199,11 @@ std::string check_solve_options(const CLI::App& command, solve_options& options)
 
 int run_solve(const solve_options& options) {
   scene s;
-  if (int code = load_for_command(options.scene, nullptr, s); code != exit_ok) return code;
+  if (int code = load_for_command(
+          options.scene, nullptr, s, nullptr,
+          {{"--ply", options.ply_path}, {"--out", options.bake_path}, {"--stats", options.stats_path}});
+      code != exit_ok)
+    return code;
   return solve_scene(s, options);
 }
 

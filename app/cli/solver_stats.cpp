@@ -5,6 +5,7 @@
 
 #include <tbb/global_control.h>
 
+#include "base/whole_file.h"
 #include "cli/console.h"
 #include "radiosity/transfer/specular_paths.h"
 
@@ -111,13 +112,7 @@ void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
 }
 
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {
-  std::ofstream out(path);
-  out << stats.dump(2) << "\n";
-  if (!out) {
-    error = path + ": cannot write statistics";
-    return false;
-  }
-  return true;
+  return write_text(path, stats.dump(2) + "\n", error);
 }
 
 }  // namespace bounce

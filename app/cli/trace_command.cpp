@@ -382,7 +382,11 @@ int trace_scene(const scene& s, const trace_options& options) {
 
 int run_trace(const trace_options& options) {
   scene s;
-  if (int code = load_for_command(options.scene, &options.camera, s); code != exit_ok) return code;
+  if (int code =
+          load_for_command(options.scene, &options.camera, s, nullptr,
+                           {{"--out", options.out_path}, {"--pfm", options.pfm_path}, {"--stats", options.stats_path}});
+      code != exit_ok)
+    return code;
   return trace_scene(s, options);
 }
 

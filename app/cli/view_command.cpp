@@ -68,7 +68,9 @@ std::string check_view_options(const CLI::App& command, view_options& options) {
 int run_view(const view_options& options) {
   scene s;
   viewer_options window = options.window;
-  if (int code = load_for_command(options.scene, &options.camera, s, &window.load_warnings); code != exit_ok)
+  if (int code = load_for_command(options.scene, &options.camera, s, &window.load_warnings,
+                                  {{"--screenshot", window.screenshot_path}, {"--still", window.still_path}});
+      code != exit_ok)
     return code;
   solver_settings solver = options.solver;
   // The scene camera leads the first steps; the window re-targets at its

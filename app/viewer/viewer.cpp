@@ -19,6 +19,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include "base/whole_file.h"
 #include "common/exit_code.h"
 #include "image/image.h"
 #include "render/mesh_renderer.h"
@@ -529,11 +530,11 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
   if (act.quit) glfwSetWindowShouldClose(window_, GLFW_TRUE);
   if (act.save_layout) save_panel_layout(panel_.layout);
   if (act.save_camera) {
-    std::ofstream out(panel_.camera_path);
-    out << camera_json(panel_.current_camera);
-    panel_.message = out ? "camera saved: " + std::filesystem::absolute(panel_.camera_path).string() +
+    std::string e;
+    panel_.message = write_text(panel_.camera_path, camera_json(panel_.current_camera), e)
+                         ? "camera saved: " + std::filesystem::absolute(panel_.camera_path).string() +
                                " (bounce render SCENE --camera FILE)"
-                         : panel_.camera_path + ": cannot write";
+                         : e;
   }
   if (view.source && (act.add_bookmark || act.delete_bookmark >= 0)) {
     if (act.add_bookmark)

@@ -9,17 +9,29 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
+#include "base/whole_file.h"
 #include "image/tonemap.h"
 
 namespace bounce {
 
 bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,
                std::string& error) {
-  if (!stbi_write_png(path.c_str(), width, height, channels, rows, width * channels)) {
-    error = path + ": cannot write PNG";
-    return false;
-  }
-  return true;
+  return write_whole(
+      path,
+      [&](const std::string& file, std::string& reason) {
+        // Encoded in memory, then written with every write checked (stb's
+        // own file writer does not check them).
+        std::string bytes;
+        auto append = [](void* to, void* data, int size) {
+          static_cast<std::string*>(to)->append(static_cast<const char*>(data), std::size_t(size));
+        };
+        if (!stbi_write_png_to_func(append, &bytes, width, height, channels, rows, width * channels)) {
+          reason = "cannot encode PNG";
+          return false;
+        }
+        return write_bytes(file, bytes, reason);
+      },
+      error);
 }
 
 std::vector<unsigned char> to_srgb_rows(const image& img, double exposure) {
@@ -36,21 +48,24 @@ std::vector<unsigned char> to_srgb_rows(const image& img, double exposure) {
 }
 
 bool write_pfm(const std::string& path, const image& img, std::string& error) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    error = path + ": cannot open for writing";
-    return false;
-  }
   static_assert(std::endian::native == std::endian::little, "PFM writer assumes a little-endian machine");
-  out << "PF\n" << img.width << " " << img.height << "\n-1.0\n";  // negative scale: little-endian
-  for (int y = img.height - 1; y >= 0; --y)
-    out.write(reinterpret_cast<const char*>(&img.pixels[std::size_t(y) * img.width * 3]),
-              std::streamsize(sizeof(float) * 3 * img.width));
-  if (!out) {
-    error = path + ": write failed";
-    return false;
-  }
-  return true;
+  return write_whole(
+      path,
+      [&](const std::string& file, std::string& reason) {
+        std::ofstream out(file, std::ios::binary);
+        if (!out) {
+          reason = "cannot open for writing: " + system_reason("unknown reason");
+          return false;
+        }
+        out << "PF\n" << img.width << " " << img.height << "\n-1.0\n";  // negative scale: little-endian
+        for (int y = img.height - 1; y >= 0; --y)
+          out.write(reinterpret_cast<const char*>(&img.pixels[std::size_t(y) * img.width * 3]),
+                    std::streamsize(sizeof(float) * 3 * img.width));
+        out.close();
+        if (!out) reason = "write failed: " + system_reason("unknown reason");
+        return bool(out);
+      },
+      error);
 }
 
 bool read_pfm(const std::string& path, image& img, std::string& error) {

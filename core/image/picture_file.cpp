@@ -8,6 +8,8 @@
 #include <tinyexr.h>
 #include <unistd.h>
 
+#include "base/whole_file.h"
+
 namespace bounce {
 
 std::optional<picture_format> picture_format_of(const std::string& path) {
@@ -42,26 +44,43 @@ std::string check_output_path(const std::string& option, const std::string& path
     return option + " " + path + ": the folder " + folder.string() + " is not writable";
   if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
     return option + " " + path + ": the file is not writable";
+  // Outputs are written beside and renamed over the old file: a device or
+  // a pipe would be replaced, not written to.
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    return option + " " + path + ": not a regular file (a device, a pipe, a socket): name a file";
   return {};
 }
 
 bool write_exr(const std::string& path, const image& img, std::string& error) {
-  const char* message = nullptr;
-  // Half floats: the format's usual storage, 11 bits of mantissa, ample for radiance.
-  if (SaveEXR(img.pixels.data(), img.width, img.height, 3, 1, path.c_str(), &message) != TINYEXR_SUCCESS) {
-    error = path + ": cannot write OpenEXR" + (message ? std::string(": ") + message : std::string());
-    if (message) FreeEXRErrorMessage(message);
-    return false;
-  }
-  return true;
+  return write_whole(
+      path,
+      [&](const std::string& file, std::string& reason) {
+        const char* message = nullptr;
+        // Half floats: the format's usual storage, 11 bits of mantissa, ample for radiance.
+        if (SaveEXR(img.pixels.data(), img.width, img.height, 3, 1, file.c_str(), &message) == TINYEXR_SUCCESS)
+          return true;
+        reason = "cannot write OpenEXR: " + (message ? std::string(message) : system_reason("unknown reason"));
+        if (message) FreeEXRErrorMessage(message);
+        return false;
+      },
+      error);
 }
 
 bool write_hdr(const std::string& path, const image& img, std::string& error) {
-  if (!stbi_write_hdr(path.c_str(), img.width, img.height, 3, img.pixels.data())) {
-    error = path + ": cannot write Radiance HDR";
-    return false;
-  }
-  return true;
+  return write_whole(
+      path,
+      [&](const std::string& file, std::string& reason) {
+        std::string bytes;
+        auto append = [](void* to, void* data, int size) {
+          static_cast<std::string*>(to)->append(static_cast<const char*>(data), std::size_t(size));
+        };
+        if (!stbi_write_hdr_to_func(append, &bytes, img.width, img.height, 3, img.pixels.data())) {
+          reason = "cannot encode Radiance HDR";
+          return false;
+        }
+        return write_bytes(file, bytes, reason);
+      },
+      error);
 }
 
 bool write_picture(const std::string& path, const image& img, double exposure, std::string& error) {

@@ -1,20 +1,13 @@
 #include "mesh/ply.h"
 
 #include <cstdio>
-#include <fstream>
 #include <numbers>
 
 #include "image/tonemap.h"
 
 namespace bounce {
 
-bool write_ply(const std::string& path, const patch_mesh& mesh, const std::vector<rgb>& radiosity, double exposure,
-               std::string& error) {
-  std::ofstream out(path);
-  if (!out) {
-    error = path + ": cannot open for writing";
-    return false;
-  }
+void write_ply(std::ostream& out, const patch_mesh& mesh, const std::vector<rgb>& radiosity, double exposure) {
   out << "ply\nformat ascii 1.0\ncomment Bounce radiosity: radiosity_* is B in W/m^2 per scene unit^2, unscaled\n"
       << "comment red/green/blue: radiance B/pi x exposure " << exposure << ", sRGB\n"
       << "element vertex " << mesh.vertex_count() << "\n"
@@ -34,12 +27,6 @@ bool write_ply(const std::string& path, const patch_mesh& mesh, const std::vecto
     out << line;
   }
   for (const glm::ivec3& t : mesh.elements) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
-  out.flush();
-  if (!out) {
-    error = path + ": write failed";
-    return false;
-  }
-  return true;
 }
 
 }  // namespace bounce

@@ -2,7 +2,7 @@
 // and Blender open.
 #pragma once
 
-#include <string>
+#include <ostream>
 #include <vector>
 
 #include "mesh/patch_mesh.h"
@@ -11,10 +11,8 @@ namespace bounce {
 
 // Vertices keep the scene's coordinates and carry float properties
 // radiosity_r/g/b (B, unscaled) and tone-mapped sRGB colours red/green/blue
-// (radiance B/pi x `exposure`). Faces are the elements. Returns false
-// with `error` naming the file when it cannot be written. Bakes go through
-// radiosity/bake.h, which chooses the exposure and writes whole.
-bool write_ply(const std::string& path, const patch_mesh& mesh, const std::vector<rgb>& radiosity, double exposure,
-               std::string& error);
+// (radiance B/pi x `exposure`). Faces are the elements. Bakes go through
+// radiosity/bake.h, which chooses the exposure and writes the file whole.
+void write_ply(std::ostream& out, const patch_mesh& mesh, const std::vector<rgb>& radiosity, double exposure);
 
 }  // namespace bounce

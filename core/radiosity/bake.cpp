@@ -13,6 +13,7 @@
 // Debian's libtinygltf.so holds the implementation.
 #include <tiny_gltf.h>
 
+#include "base/whole_file.h"
 #include "image/tonemap.h"
 #include "mesh/ply.h"
 
@@ -246,36 +247,25 @@ bool write_bake(const std::string& path, const scene& s, const patch_mesh& mesh,
   }
   const double exposure = bake_exposure(mesh, solution, settings);
   if (exposure_used) *exposure_used = exposure;
-  // Beside the target, then renamed over it: a failed or killed write
-  // leaves the old file whole.
-  const std::string partial = path + ".partial";
-  bool ok = false;
-  if (*format == bake_format::ply) {
-    ok = write_ply(partial, mesh, solution.radiosity, exposure, error);
-    if (!ok) error = path + ": " + error;
-  } else {
-    std::ofstream out(partial, std::ios::binary);
-    if (!out) {
-      error = path + ": cannot open for writing: " + std::strerror(errno);
-      return false;
-    }
-    ok = *format == bake_format::obj
-             ? write_obj(out, s, mesh, solution, exposure)
-             : write_gltf(out, *format == bake_format::glb, s, mesh, solution, settings, exposure);
-    out.close();
-    ok = ok && bool(out);
-    if (!ok) error = path + ": write failed";
-  }
-  std::error_code ec;
-  if (ok) {
-    fs::rename(partial, path, ec);
-    if (ec) {
-      error = path + ": cannot rename the written file into place: " + ec.message();
-      ok = false;
-    }
-  }
-  if (!ok) fs::remove(partial, ec);
-  return ok;
+  // Whole or not at all (base/whole_file.h).
+  return write_whole(
+      path,
+      [&](const std::string& file, std::string& reason) {
+        std::ostringstream out;
+        bool ok = true;
+        if (*format == bake_format::ply)
+          write_ply(out, mesh, solution.radiosity, exposure);
+        else if (*format == bake_format::obj)
+          ok = write_obj(out, s, mesh, solution, exposure);
+        else
+          ok = write_gltf(out, *format == bake_format::glb, s, mesh, solution, settings, exposure);
+        if (!ok) {
+          reason = "cannot encode the file";
+          return false;
+        }
+        return write_bytes(file, out.str(), reason);
+      },
+      error);
 }
 
 }  // namespace bounce

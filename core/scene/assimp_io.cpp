@@ -79,6 +79,7 @@ class guarded_stream : public Assimp::IOStream {
 class guarded_files : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
+    note_input_file(file);
     Assimp::IOStream* inner = DefaultIOSystem::Open(file, mode);
     return inner ? new guarded_stream(inner) : nullptr;
   }

@@ -923,6 +923,11 @@ gltf_read_result read_gltf(const std::string& path, std::vector<material>& mater
     const auto size = static_cast<unsigned int>(bytes->size());
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base_dir)
                            : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), size, base_dir);
+    // The files tinygltf read itself: buffers and images beside the file.
+    for (const tinygltf::Buffer& b : model.buffers)
+      if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) note_input_file(resolve(path, b.uri));
+    for (const tinygltf::Image& i : model.images)
+      if (!i.uri.empty() && i.uri.rfind("data:", 0) != 0) note_input_file(resolve(path, i.uri));
     for (const std::string& line : lines_of(warn)) result.warnings.push_back(path + ": " + line);
     std::vector<std::string> errors = lines_of(err);
     for (std::string& line : errors) {

@@ -21,7 +21,24 @@ double srgb_to_linear(double c) {
 
 }  // namespace
 
+namespace {
+thread_local input_log* current_log = nullptr;
+}  // namespace
+
+input_log::input_log() : outer_(current_log) {
+  current_log = this;
+}
+
+input_log::~input_log() {
+  current_log = outer_;
+}
+
+void note_input_file(const std::string& path) {
+  if (current_log && path.rfind(embedded_prefix, 0) != 0) current_log->files.push_back(path);
+}
+
 std::optional<std::string> read_file(const std::string& path) {
+  note_input_file(path);
   if (path.rfind(embedded_prefix, 0) == 0) {
     std::string_view name = std::string_view(path).substr(embedded_prefix.size());
     for (const embedded_file& f : embedded_files())

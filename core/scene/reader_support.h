@@ -45,6 +45,23 @@ inline constexpr double max_colour_channel = 2.0;
 // the file is missing or unreadable.
 std::optional<std::string> read_file(const std::string& path);
 
+// Every file read on this thread while a log is alive: by read_file, and
+// by the glTF and assimp readers' own reads (note_input_file). A command
+// refuses outputs that would overwrite one of them (the scene, its MTL,
+// textures, buffers).
+class input_log {
+ public:
+  input_log();
+  ~input_log();
+  input_log(const input_log&) = delete;
+  input_log& operator=(const input_log&) = delete;
+  std::vector<std::string> files;
+
+ private:
+  input_log* outer_;
+};
+void note_input_file(const std::string& path);
+
 // `relative` as named inside `base_file`: relative to the folder holding
 // it (an "embedded:" folder too), or as given when absolute.
 std::string resolve(const std::string& base_file, const std::string& relative);

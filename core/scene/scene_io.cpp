@@ -136,6 +136,12 @@ void warn_unreachable_emitters(const scene& s, load_report& report) {
 
 bool load_scene(const std::string& path, scene& out, load_report& report) {
   report = {};
+  input_log inputs;
+  struct keep_inputs {  // on every way out, failures included
+    input_log& log;
+    load_report& report;
+    ~keep_inputs() { report.inputs = std::move(log.files); }
+  } keep{inputs, report};
   scene s;
   s.source = path;
   try {

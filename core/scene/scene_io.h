@@ -22,6 +22,7 @@ struct load_report {
   std::string error;                  // set when loading failed: "file:line: what"
   std::vector<std::string> warnings;  // things dropped or ignored, one line each
   std::size_t dropped_faces = 0;      // degenerate faces removed
+  std::vector<std::string> inputs;    // every file read (reader_support.h's input_log)
 };
 
 // Paths "generated:NAME" build a procedural scene (procedural.h) by name,

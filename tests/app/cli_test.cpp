@@ -675,6 +675,42 @@ TEST(Cli, ViewWithoutADisplaySaysSo) {
   EXPECT_NE(r.err.find("bounce render"), std::string::npos) << r.err;
 }
 
+// An output that would overwrite an input (the scene, its MTL, a texture,
+// through a symbolic link too) or another output of the same command is
+// refused before any work, naming both; the files stay as they were.
+TEST(Cli, OutputsNeverOverwriteInputsOrEachOther) {
+  scratch_dir dir;
+  dir.write("wood.ppm", "P6\n2 2\n255\n" + std::string(12, char(128)));  // a grey 2 x 2 texture
+  const std::string scene = dir.write("scene.json", R"({"textures": {"wood": {"image": "wood.ppm"}},
+    "materials": {"floor": {"rho": [0.5, 0.5, 0.5], "texture": "wood"}, "lamp": {"ke": [5, 5, 5]}},
+    "surfaces": [{"polygon": [[-1, 0, -1], [-1, 0, 1], [1, 0, 1], [1, 0, -1]], "material": "floor"},
+                 {"polygon": [[-0.2, 1, -0.2], [0.2, 1, -0.2], [0.2, 1, 0.2], [-0.2, 1, 0.2]], "material": "lamp"}],
+    "camera": {"eye": [0, 2, 3], "target": [0, 0, 0], "size": [32, 32]}})");
+  const std::string scene_text = read_text(scene), texture_bytes = read_text(dir.path("wood.ppm"));
+  std::filesystem::create_symlink(scene, dir.path("alias.json"));
+  dir.write("base.obj", "mtllib base.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nusemtl lamp\nf 1 3 2\n");
+  dir.write("base.mtl", "newmtl lamp\nKe 1 1 1\n");
+  const std::string mtl_text = read_text(dir.path("base.mtl"));
+  const std::string common = " --max-edge 1 --until 0.1 --link-tolerance 1e-2";
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"render " + scene + " --stats " + scene, "--stats " + scene + " would overwrite " + scene},
+           {"trace " + scene + " --stats " + dir.path("alias.json"), "which the scene is read from"},
+           {"render " + scene + " --pfm " + dir.path("wood.ppm"), "would overwrite " + dir.path("wood.ppm")},
+           {"solve " + dir.path("base.obj") + " --stats " + dir.path("base.mtl"),
+            "would overwrite " + dir.path("base.mtl")},
+           {"bake " + scene + " --out " + dir.path("x.glb") + " --stats " + dir.path("x.glb"), "name the same file"},
+           {"render " + scene + " --out " + dir.path("x.png") + " --stats " + dir.path("x.png"), "name the same file"},
+           {"render " + scene + " --pfm /dev/null", "not a regular file"}}) {
+    const run_result r = run(args + common);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+  EXPECT_EQ(read_text(scene), scene_text);
+  EXPECT_EQ(read_text(dir.path("wood.ppm")), texture_bytes);
+  EXPECT_EQ(read_text(dir.path("base.mtl")), mtl_text);
+  EXPECT_FALSE(std::filesystem::exists(dir.path("x.png")));
+}
+
 TEST(Cli, SolveWritesStatsAndPly) {
   scratch_dir dir;
   const std::string stats = dir.path("stats.json"), ply = dir.path("box.ply");

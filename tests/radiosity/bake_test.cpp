@@ -86,7 +86,8 @@ TEST(Bake, GltfVertexColoursHoldTheSolutionUnderAnUnlitMaterial) {
     const std::string path = dir.path(name);
     ASSERT_TRUE(write_bake(path, box.s, box.mesh, *box.solution, settings, error, &exposure)) << error;
     EXPECT_NEAR(exposure, bake_exposure(box.mesh, *box.solution, {}), 1e-12);
-    EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+    for (const auto& entry : std::filesystem::directory_iterator(dir.root))
+      EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
 
     tinygltf::TinyGLTF loader;
     tinygltf::Model m;
@@ -270,11 +271,16 @@ TEST(Bake, RefusesUnknownFormatsAndLeavesNoPartialFile) {
   // A folder that does not exist: a clear error, nothing left behind.
   EXPECT_FALSE(write_bake(dir.path("missing/lit.glb"), box.s, box.mesh, *box.solution, {}, error));
   EXPECT_NE(error.find("missing/lit.glb: cannot open for writing"), std::string::npos) << error;
-  // An old file stays whole when the new one cannot be written over it.
-  const std::string old = dir.write("old.glb", "old contents");
-  std::filesystem::create_directory(old + ".partial");  // the partial file cannot be made
-  EXPECT_FALSE(write_bake(old, box.s, box.mesh, *box.solution, {}, error));
-  EXPECT_EQ(test_support::read_text(old), "old contents");
+  // What is in the way stays as it was, and nothing is left beside it: a
+  // folder of the target's name (the written file cannot replace it).
+  const std::string folder = dir.path("taken.glb");
+  std::filesystem::create_directory(folder);
+  dir.write("taken.glb/inside", "kept");
+  EXPECT_FALSE(write_bake(folder, box.s, box.mesh, *box.solution, {}, error));
+  EXPECT_NE(error.find("taken.glb: cannot put the written file in place"), std::string::npos) << error;
+  EXPECT_EQ(test_support::read_text(folder + "/inside"), "kept");
+  for (const auto& entry : std::filesystem::directory_iterator(dir.root))
+    EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
 }
 
 }  // namespace
