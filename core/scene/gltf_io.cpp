@@ -59,6 +59,28 @@ std::vector<std::string> lines_of(const std::string& text) {
 // images are decoded, later (a broken normal map then cannot fail the
 // load). Images inside buffer views are copied later too, once their byte
 // range is checked (tinygltf passes them unchecked).
+// tinygltf's reads of buffers and images beside the file, through
+// read_file: regular files only (a FIFO would block for ever), and noted
+// as inputs.
+bool read_whole_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  const std::optional<std::string> bytes = read_file(path);
+  if (!bytes) {
+    std::error_code ec;
+    if (err)
+      *err += std::filesystem::exists(path, ec) ? "'" + path + "' is not a regular file\n"
+                                                : "File not found : " + path + "\n";
+    return false;
+  }
+  out->assign(bytes->begin(), bytes->end());
+  return true;
+}
+
+// tinygltf's own test opens the file, which blocks on a FIFO.
+bool file_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
 bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
   if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
@@ -916,6 +938,8 @@ gltf_read_result read_gltf(const std::string& path, std::vector<material>& mater
       *bytes = binary ? place_draco_accessors_in_glb(*bytes) : place_draco_accessors(*bytes);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_image_bytes, nullptr);
+    loader.SetFsCallbacks(
+        {&file_exists, &tinygltf::ExpandFilePath, &read_whole_regular_file, &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string err, warn;
     const std::string base_dir = std::filesystem::path(path).parent_path().string();
@@ -923,11 +947,6 @@ gltf_read_result read_gltf(const std::string& path, std::vector<material>& mater
     const auto size = static_cast<unsigned int>(bytes->size());
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base_dir)
                            : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), size, base_dir);
-    // The files tinygltf read itself: buffers and images beside the file.
-    for (const tinygltf::Buffer& b : model.buffers)
-      if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) note_input_file(resolve(path, b.uri));
-    for (const tinygltf::Image& i : model.images)
-      if (!i.uri.empty() && i.uri.rfind("data:", 0) != 0) note_input_file(resolve(path, i.uri));
     for (const std::string& line : lines_of(warn)) result.warnings.push_back(path + ": " + line);
     std::vector<std::string> errors = lines_of(err);
     for (std::string& line : errors) {

@@ -199,6 +199,10 @@ struct scene_builder {
     if (kind == "polygon") {
       r.only_keys(j, where, {"polygon", "uv", "name", "material"});
       polygon_mesh mesh;
+      // As for OBJ faces: triangulating more corners costs too much.
+      if (g.is_array() && g.size() > max_face_corners)
+        r.fail(at, "has " + std::to_string(g.size()) + " corners; at most " + std::to_string(max_face_corners) +
+                       " per polygon (split it, or give it as an OBJ with faces)");
       mesh.positions = r.vec_list<3>(g, at);
       if (mesh.positions.size() < 3) r.fail(at, "needs at least 3 vertices");
       polygon_face face;

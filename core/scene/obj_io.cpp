@@ -45,7 +45,8 @@ std::string rest_of(const std::vector<std::string_view>& tokens, std::size_t fir
   return std::string(begin, end);
 }
 
-// Iterates a text file's lines with their numbers; strips comments and CR.
+// Iterates a text file's lines with their numbers; strips comments. Lines
+// end in LF, CR LF or a lone CR (old Mac exporters still write those).
 struct line_reader {
   std::string_view text;
   std::size_t pos = 0;
@@ -53,10 +54,10 @@ struct line_reader {
 
   bool next(std::string_view& line) {
     if (pos >= text.size()) return false;
-    std::size_t end = text.find('\n', pos);
+    std::size_t end = text.find_first_of("\r\n", pos);
     if (end == std::string_view::npos) end = text.size();
     line = text.substr(pos, end - pos);
-    pos = end + 1;
+    pos = end + (end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n' ? 2 : 1);
     ++number;
     if (std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);

@@ -1,6 +1,7 @@
 #include "scene/scene_io.h"
 
 #include <cctype>
+#include <new>
 #include <variant>
 
 #include "scene/assimp_io.h"
@@ -196,8 +197,11 @@ bool load_scene(const std::string& path, scene& out, load_report& report) {
     report.warnings.insert(report.warnings.end(), e.warnings.begin(), e.warnings.end());
     report.error = e.what();
     return false;
+  } catch (const std::bad_alloc&) {
+    report.error = path + ": out of memory while reading it (the file is larger than the memory this process may use)";
+    return false;
   } catch (const std::exception& e) {
-    // Anything else (e.g. out of memory) still gets the file named.
+    // Anything else still gets the file named.
     report.error = path + ": " + e.what();
     return false;
   }

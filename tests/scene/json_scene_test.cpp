@@ -2,6 +2,7 @@
 // reads it: a round trip of every construct, and bad input that must fail
 // with a message naming the file and the value's path inside it, or the
 // line and column of a syntax error.
+#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -127,6 +128,22 @@ TEST(JsonSceneBadInput, UndecodableTexture) {
   std::string e = load_error_of(path);
   EXPECT_NE(e.find("cannot decode texture"), std::string::npos) << e;
   EXPECT_NE(e.find("textures.t"), std::string::npos) << e;
+}
+
+// A 100,000-corner polygon took 43 s to triangulate: the OBJ reader's limit
+// on corners holds for JSON polygons too.
+TEST(JsonSceneBadInput, PolygonsHaveAtMostTheCornersOfAnObjFace) {
+  scratch_dir dir;
+  std::string circle = "[";
+  for (int i = 0; i <= 10000; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 10001.0;
+    circle += (i ? ", [" : "[") + std::to_string(std::cos(a)) + ", 0, " + std::to_string(std::sin(a)) + "]";
+  }
+  circle += "]";
+  const std::string path =
+      dir.write("circle.json", json_scene(R"({"polygon": )" + circle + R"(, "material": "white"})"));
+  const std::string e = load_error_of(path);
+  EXPECT_NE(e.find("surfaces[0].polygon: has 10001 corners; at most 10000"), std::string::npos) << e.substr(0, 300);
 }
 
 TEST(JsonScene, SpotAndSunLights) {

@@ -69,6 +69,26 @@ TEST(ObjCorpus, UndefinedMaterialGetsTheGreyDefaultWithOneWarning) {
   EXPECT_EQ(l.material_of_face(0, 2).rho, rgb(0.5));
 }
 
+// Old Mac exporters end lines with a lone CR: the OBJ was "no faces" and
+// the MTL one line, its lamp lost. Both read as with LF, line numbers too.
+TEST(ObjCorpus, CrOnlyLineEndsReadAsLines) {
+  scratch_dir dir;
+  dir.write("mac.mtl", "newmtl white\rKd 0.5 0.5 0.5\rnewmtl lamp\rKe 4 4 4\r");
+  const std::string path = dir.write(
+      "mac.obj",
+      "mtllib mac.mtl\rv 0 0 0\rv 1 0 0\rv 0 0 1\rv 0 1 0\rusemtl white\rf 1 3 2\rusemtl lamp\rf 1 2 4\rf 9 9 9\r");
+  scene s;
+  load_report report;
+  EXPECT_FALSE(load_scene(path, s, report));
+  EXPECT_NE(report.error.find(path + ":10:"), std::string::npos) << report.error;  // the bad face's line
+  dir.write("mac.obj",
+            "mtllib mac.mtl\rv 0 0 0\rv 1 0 0\rv 0 0 1\rv 0 1 0\r\nusemtl white\rf 1 3 2\rusemtl lamp\rf 1 2 4\r");
+  loaded l = load(path);
+  ASSERT_TRUE(l.ok) << l.report.error;
+  EXPECT_EQ(l.material_of_face(0, 0).rho, rgb(0.5));
+  EXPECT_EQ(l.material_of_face(0, 1).ke, rgb(4.0));
+}
+
 // usemtl before the mtllib that defines it: names are looked up at the end.
 TEST(ObjCorpus, UsemtlBeforeMtllibFindsTheMaterial) {
   scratch_dir dir;
