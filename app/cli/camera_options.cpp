@@ -14,7 +14,8 @@ void add_camera_options(CLI::App& command, camera_options& o) {
   command.add_option("--eye", o.eye, "camera position x,y,z")->check(vec3_value());
   command.add_option("--target", o.target, "point looked at x,y,z")->check(vec3_value());
   command.add_option("--up", o.up, "up direction x,y,z")->check(vec3_value());
-  command.add_option("--fov", o.fov, "vertical field of view, degrees")->check(number_in(0.0, 180.0, true, true));
+  command.add_option("--fov", o.fov, "vertical field of view, degrees")
+      ->check(number_in(min_fov_degrees, max_fov_degrees));
   command
       .add_option("--size", o.size,
                   "image size WxH (1 to " + std::to_string(max_image_side) + " per side, at most " +
@@ -34,7 +35,8 @@ std::string apply_camera_options(const camera_options& options, camera& view) {
     *fields[i] = *v;
   }
   if (options.fov) {
-    if (!(*options.fov > 0.0 && *options.fov < 180.0)) return "--fov: must be in (0, 180) degrees";
+    if (!(*options.fov >= min_fov_degrees && *options.fov <= max_fov_degrees))
+      return "--fov: must be from 0.001 to 179 degrees";
     c.fov_y_degrees = *options.fov;
   }
   if (!options.size.empty()) {

@@ -41,7 +41,8 @@ void add_program_options(CLI::App& app, program_options& options) {
   app.add_flag("--quiet,-q", options.quiet, "print only warnings and errors: no progress bars, no reports");
   app.add_option("--threads", options.threads, "worker threads (default: one per core)")->check(CLI::Range(1, 4096));
   app.add_option("SCENE", options.scene,
-                 "with no command: open this scene as `bounce view SCENE` does (headless: render it to bounce.png)");
+                 "with no command: open this scene as `bounce view SCENE` does (headless: render it to bounce.png)")
+      ->check(named_scene());
 }
 
 // A subcommand: its name and help line, and its options' functions bound

@@ -21,11 +21,22 @@ void print_warnings(const load_report& report) {
 
 }  // namespace
 
+CLI::Validator named_scene() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "is empty (an unset shell variable?): name a scene file, or leave SCENE out for the "
+                              "built-in Cornell box"
+                            : "";
+      },
+      "");
+}
+
 void add_scene_argument(CLI::App& command, std::string& path) {
-  command.add_option(
-      "SCENE", path,
-      "scene file (.json, .obj, .gltf, .glb, .ply, .stl, .dae, .fbx, .3ds, .off), or generated:NAME (e.g. "
-      "generated:interior-1m)");
+  command
+      .add_option("SCENE", path,
+                  "scene file (.json, .obj, .gltf, .glb, .ply, .stl, .dae, .fbx, .3ds, .off), or generated:NAME (e.g. "
+                  "generated:interior-1m)")
+      ->check(named_scene());
 }
 
 // Loads the scene named on the command line (or the embedded default) and

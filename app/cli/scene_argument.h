@@ -11,9 +11,14 @@
 
 namespace CLI {
 class App;
+class Validator;
 }  // namespace CLI
 
 namespace bounce {
+
+// SCENE given but empty (`bounce render ""`, an unset variable) is refused:
+// it would otherwise mean the built-in Cornell box.
+CLI::Validator named_scene();
 
 // SCENE, with the help every command shows for it.
 void add_scene_argument(CLI::App& command, std::string& path);

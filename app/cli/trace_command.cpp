@@ -26,6 +26,11 @@
 #include "trace/ray_tracer.h"
 
 namespace bounce {
+
+// Each caustic photon kept takes 104 bytes, and tracing 50 million takes
+// minutes on a laptop: a count beyond is a mistake, not a wish (2^31 of
+// them would need 220 GB).
+constexpr std::uint64_t max_photons = 50'000'000;
 namespace {
 
 using clock_type = std::chrono::steady_clock;
@@ -116,7 +121,7 @@ void add_trace_options(CLI::App& command, trace_options& options) {
       .add_option("--photons", options.photons,
                   "twopass and ppm: caustic photons (ppm: per pass). Default: none if nothing in the scene is a "
                   "mirror or glass, else 500000 (twopass) or 200000 (ppm)")
-      ->check(CLI::Range(0L, 1L << 31));
+      ->check(count_at_most(max_photons));
   command.add_option("--passes", options.passes, "ppm: photon passes, each with a smaller radius")
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();

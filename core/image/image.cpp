@@ -1,8 +1,11 @@
 #include "image/image.h"
 
 #include <bit>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -69,7 +72,16 @@ bool write_pfm(const std::string& path, const image& img, std::string& error) {
 }
 
 bool read_pfm(const std::string& path, image& img, std::string& error) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    error = path + (std::filesystem::exists(path, ec) ? ": not a file" : ": no such file");
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = path + ": cannot read: " + std::strerror(errno);
+    return false;
+  }
   std::string magic;
   double scale = 0.0;
   int w = 0, h = 0;
@@ -79,6 +91,15 @@ bool read_pfm(const std::string& path, image& img, std::string& error) {
     return false;
   }
   in.get();  // the single whitespace after the header
+  // The pixels the header promises must be in the file, before any is
+  // allocated: a header may claim 65536 x 65536 over a few bytes.
+  const std::uint64_t needed = std::uint64_t(w) * std::uint64_t(h) * 3 * sizeof(float);
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec || std::uint64_t(in.tellg()) + needed > size) {
+    error = path + ": truncated PFM: its header says " + std::to_string(w) + "x" + std::to_string(h) + " (" +
+            std::to_string(needed) + " bytes of pixels), the file has " + std::to_string(size) + " bytes";
+    return false;
+  }
   img.width = w;
   img.height = h;
   img.pixels.assign(std::size_t(w) * h * 3, 0.0f);

@@ -147,7 +147,8 @@ std::string check_camera(const camera& c) {
   if (glm::length(c.up) == 0.0) return "camera: up is zero";
   if (glm::length(glm::cross(glm::normalize(forward), glm::normalize(c.up))) < 1e-6)
     return "camera: up is parallel to the view direction";
-  if (!(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0)) return "camera: fov must be in (0, 180) degrees";
+  if (!(c.fov_y_degrees >= min_fov_degrees && c.fov_y_degrees <= max_fov_degrees))
+    return "camera: fov must be from 0.001 to 179 degrees";
   if (c.width < 1 || c.height < 1 || c.width > max_image_side || c.height > max_image_side)
     return "camera: size " + std::to_string(c.width) + "x" + std::to_string(c.height) + " must be from 1 to " +
            std::to_string(max_image_side) + " per side";

@@ -13,6 +13,12 @@ namespace bounce {
 // when valid, else the first problem.
 std::string validate_scene(const scene& s);
 
+// A camera's vertical field of view, in degrees: narrower than this the
+// view's float projection divides by zero (a black picture), wider is no
+// perspective at all.
+inline constexpr double min_fov_degrees = 1e-3;
+inline constexpr double max_fov_degrees = 179.0;
+
 // True when some surface emits (ke > 0) or a point light shines. A scene
 // without is valid (its picture is black) but worth a warning.
 bool has_light_source(const scene& s);

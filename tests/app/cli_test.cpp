@@ -1,4 +1,5 @@
 // The `bounce` command line, run as a user would: exit codes and messages.
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -232,7 +234,8 @@ TEST(Cli, CameraOverridesAreChecked) {
       {"render --size 640x-1", "--size: size 640x-1 must be from 1 to 16384"},
       {"trace --size 20000x10", "--size: size 20000x10 must be from 1 to 16384"},
       {"view --size 16384x16384", "more than the limit of 33554432"},
-      {"trace --fov 200", "--fov: 200 is out of range: must be in (0, 180)"},
+      {"trace --fov 200", "--fov: 200 is out of range: must be in [0.001, 179]"},
+      {"render --fov 1e-300", "--fov: 1e-300 is out of range: must be in [0.001, 179]"},
       {"trace --fov 0", "--fov: 0 is out of range"},
       {"trace --fov nan", "--fov: 'nan' is not a finite number"},
       {"view --eye 278,273,0 --target 278,273,0", "eye and target are the same point"},
@@ -709,6 +712,46 @@ TEST(Cli, OutputsNeverOverwriteInputsOrEachOther) {
   EXPECT_EQ(read_text(dir.path("wood.ppm")), texture_bytes);
   EXPECT_EQ(read_text(dir.path("base.mtl")), mtl_text);
   EXPECT_FALSE(std::filesystem::exists(dir.path("x.png")));
+}
+
+// Reproducers of arguments and files that crashed, hung or silently fell
+// back: each is refused at once with its reason.
+TEST(Cli, BadArgumentsAndFilesAreRefusedWithTheirReason) {
+  scratch_dir dir;
+  // A PFM whose header claims 65536 x 65536 over 192 floats: no 48 GiB
+  // allocation, no abort.
+  const std::string big = dir.write("big.pfm", "PF\n65536 65536\n-1.0\n" + std::string(192 * sizeof(float), '\0'));
+  const std::string small = dir.write("small.pfm", "PF\n1 1\n-1.0\n" + std::string(3 * sizeof(float), '\0'));
+  const std::string fifo = dir.path("buffer.bin");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string gltf = dir.write("fifo.gltf", R"({"asset": {"version": "2.0"},
+    "buffers": [{"uri": "buffer.bin", "byteLength": 36}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]})");
+  for (const auto& [args, code, message] : std::vector<std::tuple<std::string, int, std::string>>{
+           {"render \"\"", 2, "SCENE: is empty (an unset shell variable?)"},
+           {"compare " + big + " " + small, 1, "truncated PFM: its header says 65536x65536"},
+           {"compare " + dir.path("missing.pfm") + " " + small, 1, "missing.pfm: no such file"},
+           {"trace --integrator twopass --photons 2147483647", 2, "must be at most 50000000"},
+           {"info " + gltf, 1, "is not a regular file"}}) {
+    const run_result r = run_env("timeout 20", args);
+    EXPECT_EQ(r.code, code) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+// Out of memory (here a 1.5 GB address-space limit under a million
+// triangles) is an error that says so, exit 1, not "terminate called after
+// throwing std::bad_alloc" and an abort. AddressSanitizer reserves more
+// address space than any such limit: not under it.
+TEST(Cli, OutOfMemoryIsAnErrorNotAnAbort) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot run under an address-space limit";
+#endif
+  const run_result r = run_env("ulimit -v 1500000;", "solve generated:interior-1m --until 0.5");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("error: out of memory"), std::string::npos) << r.err;
 }
 
 TEST(Cli, SolveWritesStatsAndPly) {
