@@ -19,8 +19,25 @@ void update_residual(hierarchical_solver& solver) {
   solver.residual_fraction = solver.sources.emitted_power > 0.0 ? power / solver.sources.emitted_power : 0.0;
 }
 
+// The solution is at least its emission plus the direct light (K >= 0,
+// B >= 0): B >= E + direct, element by element. BiCGSTAB's iterates are not
+// monotone and can dip below that early on (a still stopped at 5% showed
+// negative indirect light), and so can a solution when refined links bring
+// more direct light than it holds. Raising such an element to the bound
+// moves it towards the solution, never away.
+void raise_to_the_direct_light(hierarchical_solver& solver) {
+  const light_parts& light = solver.light;
+  const std::vector<rgb>& emission = solver.sources.emission;
+  for (std::size_t e = 0; e < light.total.size(); ++e) {
+    rgb least = emission[e] + light.direct[e];
+    if (e < light.mirrored.size()) least += light.mirrored[e];
+    solver.light.total[e] = glm::max(light.total[e], least);
+  }
+}
+
 // The direct light (plain links from the emitters, and the point lights
-// straight), and the emitters' light through mirror links.
+// straight), and the emitters' light through mirror links; the solution
+// raised to it where new links brought more than it holds.
 void update_direct(hierarchical_solver& solver) {
   light_parts& light = solver.light;
   std::vector<rgb>& emitted = solver.buffers.emitted;
@@ -31,6 +48,7 @@ void update_direct(hierarchical_solver& solver) {
     light.direct[e] = h.rho[e] * normalised(light.direct[e], emitted[e], h.normalizer[e]) + direct_lamp(solver, e);
     light.mirrored[e] = h.rho[e] * light.mirrored[e];
   }
+  if (light.total.size() == light.direct.size()) raise_to_the_direct_light(solver);
 }
 
 bool tolerance_final(const hierarchical_solver& solver) {
@@ -75,6 +93,7 @@ void iterate(hierarchical_solver& solver, double refine_below) {
   const double residual_before = solver.residual_fraction;
   if (bicgstab_block(solver, rhs, solver.light.total, solver.params.iterations_per_step, tolerance,
                      solver.progress.operator_applications)) {
+    raise_to_the_direct_light(solver);
     update_residual(solver);
     if (solver.residual_fraction < residual_before) return;
   }
