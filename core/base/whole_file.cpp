@@ -49,8 +49,14 @@ bool write_whole(const std::string& path,
       target + ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(next_temporary++);
   std::string reason;
   errno = 0;
-  const bool written = write(temporary, reason);
   std::error_code ec;
+  bool written = false;
+  try {
+    written = write(temporary, reason);
+  } catch (...) {  // out of memory while encoding, say: nothing left beside the target
+    fs::remove(temporary, ec);
+    throw;
+  }
   if (!written) {
     fs::remove(temporary, ec);
     error = path + ": " + (reason.empty() ? "write failed" : reason);

@@ -44,12 +44,13 @@ light_arrival light_at(const punctual_light& l, const vec3& p, double far) {
 
 double cone_solid_angle(const punctual_light& l) {
   if (l.type != light_type::spot) return 4.0 * std::numbers::pi;
-  // share 1 up to the inner cone, t^2 over the edge: its integral in the
-  // cosine is a third of the edge's width.
-  const double ci = std::cos(l.inner_cone), co = std::cos(l.outer_cone);
+  // In the cosine c: share t^2 over the edge [co, co + w], then 1 up to
+  // c = 1. The edge is cut short where co + w passes 1 (cones under 2.6
+  // degrees, or closer than the 1e-3 the width is held to).
+  const double co = std::cos(l.outer_cone);
   const double w = edge_width(l);
-  const double edge = ci > co ? (ci - co) * (ci - co) * (ci - co) / (3.0 * w * w) : 0.0;
-  return 2.0 * std::numbers::pi * (std::max(0.0, 1.0 - ci) + edge);
+  const double a = std::min(w, std::max(0.0, 1.0 - co));
+  return 2.0 * std::numbers::pi * (a * a * a / (3.0 * w * w) + std::max(0.0, 1.0 - co - w));
 }
 
 rgb emitted_power(const punctual_light& l, double scene_radius) {

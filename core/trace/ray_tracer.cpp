@@ -434,9 +434,10 @@ class tracer {
           const double cos_e = -glm::dot(d, hit->face_normal);
           weight = power_heuristic(diffuse_pdf, hit->t * hit->t / (cos_e * rays_.emitter_area()));
         }
-        // Seen from the camera, an emission texture's detail; as light on
-        // the scene, its mean, as next-event estimation samples it.
-        radiance += throughput * (bounce == 0 ? sp.ke : sp.mat->ke) * weight;
+        // Seen from the camera or in a mirror, an emission texture's detail;
+        // as light found by a diffuse bounce, its mean, as next-event
+        // estimation samples it.
+        radiance += throughput * (diffuse_pdf > 0.0 ? sp.mat->ke : sp.ke) * weight;
       }
       if (bounce + 1 >= p_.max_path) break;
 
