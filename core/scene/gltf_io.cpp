@@ -88,6 +88,22 @@ bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::stri
   return true;
 }
 
+// tinygltf quotes a buffer's URI in its messages; an embedded one is the
+// whole buffer in base64 (a megabyte). Each is shortened to its start and
+// its length.
+std::string without_data_uris(std::string line) {
+  static const std::string base64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/=";
+  for (std::size_t at = line.find("data:"); at != std::string::npos; at = line.find("data:", at + 1)) {
+    const std::size_t comma = line.find(',', at);
+    if (comma == std::string::npos) break;
+    std::size_t end = line.find_first_not_of(base64, comma + 1);
+    if (end == std::string::npos) end = line.size();
+    if (end - comma <= 64) continue;
+    line.replace(comma + 1, end - comma - 1, "... (" + std::to_string(end - comma - 1) + " characters)");
+  }
+  return line;
+}
+
 std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
   std::uint32_t v;
   std::memcpy(&v, bytes.data() + at, 4);  // glTF binaries are little-endian, as is every host Bounce runs on
@@ -129,7 +145,9 @@ void check_glb(const std::string& bytes, const std::string& path) {
 // is, for tinygltf to report.
 std::string place_draco_accessors(const std::string& text) {
   nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-  if (doc.is_discarded() || !doc.contains("meshes") || !doc.contains("accessors")) return text;
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("meshes") || !doc["meshes"].is_array() ||
+      !doc.contains("accessors") || !doc["accessors"].is_array())
+    return text;
   nlohmann::json& accessors = doc["accessors"];
   bool changed = false;
   auto place = [&](const nlohmann::json& accessor, const nlohmann::json& view) {
@@ -562,7 +580,11 @@ struct gltf_reader {
       if (!ids.Has(name)) continue;
       if (!ids.Get(name).IsNumber()) fail(where, "attribute '" + name + "' needs a number");
       const int components = name == "POSITION" || name == "NORMAL" ? 3 : name.rfind("TEXCOORD_", 0) == 0 ? 2 : 0;
-      if (components > 0) wanted[ids.Get(name).GetNumberAsInt()] = components;
+      const int id = ids.Get(name).GetNumberAsInt();
+      if (components > 0 && wanted.count(id) && wanted[id] != components)
+        fail(where,
+             "attributes '" + name + "' and another of a different size name Draco attribute " + std::to_string(id));
+      if (components > 0) wanted[id] = components;
     }
     if (!ids.Has("POSITION")) fail(where, "has no POSITION");
     draco_mesh out;
@@ -620,6 +642,9 @@ struct gltf_reader {
         if (draco == prim.extensions.end()) return read_vectors<n>(accessor, count, at + ".attributes." + name);
         std::vector<glm::vec<n, double>> out(decoded.points);
         const std::vector<double>& values = decoded.attributes.at(draco_id(name));
+        if (values.size() != out.size() * std::size_t(n))
+          fail(at + ".extensions.KHR_draco_mesh_compression",
+               name + " shares its Draco attribute with an attribute of another size");
         for (std::size_t i = 0; i < out.size(); ++i)
           for (int c = 0; c < n; ++c) {
             const double x = values[i * n + std::size_t(c)];
@@ -866,6 +891,10 @@ struct gltf_reader {
   }
 
   void read() {
+    // tinygltf reads a 1.0 file's JSON without complaint and finds nothing
+    // in it; the version says why.
+    if (!m.asset.version.empty() && m.asset.version[0] != '2')
+      throw load_error(path + ": glTF version " + m.asset.version + "; Bounce reads version 2");
     static const std::set<std::string> supported = {
         "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_draco_mesh_compression",
         "KHR_materials_transmission",      "KHR_materials_ior",     "KHR_materials_volume"};
@@ -947,9 +976,12 @@ gltf_read_result read_gltf(const std::string& path, std::vector<material>& mater
     const auto size = static_cast<unsigned int>(bytes->size());
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base_dir)
                            : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), size, base_dir);
-    for (const std::string& line : lines_of(warn)) result.warnings.push_back(path + ": " + line);
+    std::vector<std::string> warnings = lines_of(warn);
+    for (std::string& line : warnings) line = without_data_uris(line);
+    for (const std::string& line : warnings) result.warnings.push_back(path + ": " + line);
     std::vector<std::string> errors = lines_of(err);
     for (std::string& line : errors) {
+      line = without_data_uris(line);
       // nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: ..."
       if (line.rfind("[json.exception.", 0) == 0 && line.find("] ") != std::string::npos)
         line = "invalid JSON: " + line.substr(line.find("] ") + 2);
