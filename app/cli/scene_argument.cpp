@@ -60,17 +60,22 @@ int load_for_command(const std::string& path, const camera_options* camera_overr
   if (camera_overrides) {
     // A camera file is a file that may be unusable (exit 1); the options
     // typed over it are the command line (exit 2).
+    const camera scene_camera = s.view;
     if (std::string e; !camera_overrides->file.empty() && !load_camera_file(camera_overrides->file, s.view, e)) {
       std::cerr << "error: --camera: " << e << "\n";
       return exit_input_error;
     }
+    // Whose size it is, for the message below: the camera file's, if it set one.
+    const bool file_sized = s.view.width != scene_camera.width || s.view.height != scene_camera.height;
     if (std::string e = apply_camera_options(*camera_overrides, s.view); !e.empty()) {
       std::cerr << "error: " << e << "\n";
       return exit_usage;
     }
-    // The scene file's size, when --size did not replace it: the same limits.
+    // The scene file's or the camera file's size, when --size did not
+    // replace it: the same limits.
     if (std::string e = check_image_size(s.view.width, s.view.height); !e.empty()) {
-      std::cerr << "error: " << s.source << ": camera.size: " << e << " (use --size)\n";
+      std::cerr << "error: " << (file_sized ? camera_overrides->file : s.source) << ": camera.size: " << e
+                << " (use --size)\n";
       return exit_input_error;
     }
   }

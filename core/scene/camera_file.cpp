@@ -4,6 +4,7 @@
 
 #include "scene/json_scene.h"
 #include "scene/reader_support.h"
+#include "scene/scene_validate.h"
 
 namespace bounce {
 namespace {
@@ -19,7 +20,9 @@ bool parse_camera_text(const std::string& text, const std::string& where, camera
     r.only_keys(doc, "camera file", {"camera"});
     if (!doc.contains("camera")) r.fail("camera file", "needs a 'camera' object");
     camera c = cam;
-    read_camera(r, doc["camera"], c);
+    read_camera(r, doc["camera"], c, /*partial=*/true);
+    // The camera it makes, checked here, so that a fault is the file's.
+    if (std::string e = check_camera(c); !e.empty()) r.fail("camera file", e.substr(e.find(": ") + 2));
     cam = c;
     return true;
   } catch (const load_error& e) {

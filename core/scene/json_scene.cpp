@@ -72,11 +72,11 @@ json parse_json(const std::string& path, const std::string& text) {
   }
 }
 
-void read_camera(const json_reader& r, const json& j, camera& cam) {
+void read_camera(const json_reader& r, const json& j, camera& cam, bool partial) {
   r.only_keys(j, "camera", {"eye", "target", "up", "fov", "size"});
-  if (!j.contains("eye") || !j.contains("target")) r.fail("camera", "needs 'eye' and 'target'");
-  cam.eye = r.vec<3>(j["eye"], "camera.eye");
-  cam.target = r.vec<3>(j["target"], "camera.target");
+  if (!partial && (!j.contains("eye") || !j.contains("target"))) r.fail("camera", "needs 'eye' and 'target'");
+  if (j.contains("eye")) cam.eye = r.vec<3>(j["eye"], "camera.eye");
+  if (j.contains("target")) cam.target = r.vec<3>(j["target"], "camera.target");
   if (j.contains("up")) cam.up = r.vec<3>(j["up"], "camera.up");
   if (j.contains("fov")) cam.fov_y_degrees = r.number(j["fov"], "camera.fov");
   if (j.contains("size")) {

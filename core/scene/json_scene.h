@@ -97,10 +97,11 @@ struct json_reader {
 // and column of a syntax error or of a number literal beyond a double.
 nlohmann::json parse_json(const std::string& path, const std::string& text);
 
-// Reads a camera object ({"eye", "target", "up", "fov", "size"}; eye and
-// target required) into `cam`; keys left out keep `cam`'s values. On
-// failure `cam` may be partly written.
-void read_camera(const json_reader& r, const nlohmann::json& j, camera& cam);
+// Reads a camera object ({"eye", "target", "up", "fov", "size"}) into
+// `cam`; keys left out keep `cam`'s values. A scene's camera needs eye and
+// target; a camera file (`partial`) may give any of them. On failure `cam`
+// may be partly written.
+void read_camera(const json_reader& r, const nlohmann::json& j, camera& cam, bool partial = false);
 
 // Reads the .json scene `path` into `s` (whose source the caller sets):
 // textures, materials, surfaces (the OBJ files they name included),

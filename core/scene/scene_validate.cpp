@@ -140,6 +140,8 @@ bool has_emitting_surface(const scene& s, bool lamps_only = false) {
   return false;
 }
 
+}  // namespace
+
 std::string check_camera(const camera& c) {
   if (!in_range(c.eye) || !in_range(c.target) || !finite(c.up)) return "camera: eye, target and up must be finite";
   vec3 forward = c.target - c.eye;
@@ -154,8 +156,6 @@ std::string check_camera(const camera& c) {
            std::to_string(max_image_side) + " per side";
   return {};
 }
-
-}  // namespace
 
 std::string validate_scene(const scene& s) {
   for (const material& m : s.materials) {

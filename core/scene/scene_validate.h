@@ -13,6 +13,10 @@ namespace bounce {
 // when valid, else the first problem.
 std::string validate_scene(const scene& s);
 
+// The camera's own rules (eye off the target, up off the view direction,
+// fov, size): an error message ("camera: ...") or an empty string.
+std::string check_camera(const camera& c);
+
 // A camera's vertical field of view, in degrees: narrower than this the
 // view's float projection divides by zero (a black picture), wider is no
 // perspective at all.

@@ -1085,6 +1085,18 @@ TEST(Cli, CameraFileRendersTheSameViewAsOptions) {
   r = run("trace --camera " + dir.path("missing.json"));
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("missing.json: cannot read file"), std::string::npos) << r.err;
+  // Keys left out keep the scene's values, as docs/cli.md says: a fov alone.
+  const std::string narrow = dir.write("narrow.json", R"({"camera": {"fov": 30, "size": [24, 16]}})");
+  ASSERT_EQ(run("render --camera " + narrow + fast + dir.path("d.pfm") + " --out " + dir.path("d.png")).code, 0);
+  EXPECT_EQ(head(dir.path("d.pfm"), 9), "PF\n24 16\n");
+  // A bad fov or an absurd size in a camera file is the file's fault (exit
+  // 1, the file named), not the command line's or the scene's.
+  r = run("render --camera " + dir.write("wide.json", R"({"camera": {"fov": 200}})"));
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("wide.json: camera file: fov must be from 0.001 to 179 degrees"), std::string::npos) << r.err;
+  r = run("render --camera " + dir.write("huge.json", R"({"camera": {"size": [16000, 16000]}})"));
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("huge.json: camera.size"), std::string::npos) << r.err;
 }
 
 }  // namespace

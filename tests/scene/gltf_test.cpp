@@ -821,6 +821,25 @@ TEST(Gltf, TruncatedGlb) {
   }
 }
 
+// A glTF 1.0 .gltf said "no triangles in the scene"; the .glb path already
+// named the version. An embedded buffer that is too short was quoted whole
+// (a megabyte of base64): messages keep its start and its length.
+TEST(Gltf, OldVersionsAndShortEmbeddedBuffersAreNamedBriefly) {
+  scratch_dir dir;
+  gltf_file old = good_quad();
+  old.doc["asset"]["version"] = "1.0";
+  EXPECT_NE(error_of(dir.write("old.gltf", old.gltf_text())).find("glTF version 1.0; Bounce reads version 2"),
+            std::string::npos);
+  gltf_file shortened = good_quad();
+  shortened.bin += std::string(100000, '\0');  // 133 KB of base64
+  std::string text = shortened.gltf_text();
+  // The buffer claims 8 bytes more than its data URI holds.
+  const std::string claim = "\"byteLength\":" + std::to_string(shortened.bin.size());
+  text.replace(text.find(claim), claim.size(), "\"byteLength\":" + std::to_string(shortened.bin.size() + 8));
+  const std::string e = error_of(dir.write("short.gltf", text));
+  EXPECT_LT(e.size(), 400u) << e.substr(0, 400);
+}
+
 TEST(Gltf, BadAccessorsAndIndicesNameMeshPrimitiveAndAccessor) {
   scratch_dir dir;
   {  // POSITION names an accessor that does not exist
