@@ -11,16 +11,16 @@ rgb ambient_radiosity(const patch_mesh& mesh, std::span<const rgb> remaining) {
   double area = 0.0;
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     reflectance += element_mean(mesh, mesh.vertex_rho, e) * mesh.element_areas[e];
-    // Light still to come is never negative: where an iterate overshoots
-    // (the hierarchical residual is signed), nothing is added, and the
-    // ambient term cannot take light away (it made early stills negative).
-    unshot += glm::max(remaining[e], rgb(0.0)) * mesh.element_areas[e];
+    unshot += remaining[e] * mesh.element_areas[e];
     area += mesh.element_areas[e];
   }
   if (!(area > 0.0)) return rgb(0.0);
   // Interreflection factor 1 + rho + rho^2 + ... of the mean reflectance.
   const rgb mean_rho = reflectance / area;
-  return unshot / area / (rgb(1.0) - mean_rho);
+  // Light still to come is never negative: where the iterate overshoots
+  // on the whole (the hierarchical residual is signed), the term is zero
+  // rather than taking light away (it made early stills negative).
+  return glm::max(unshot / area / (rgb(1.0) - mean_rho), rgb(0.0));
 }
 
 rgb mean_indirect_irradiance(const patch_mesh& mesh, const radiosity_snapshot& solution) {

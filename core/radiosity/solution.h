@@ -59,8 +59,9 @@ std::shared_ptr<const radiosity_snapshot> make_snapshot(const patch_mesh& mesh, 
                                                         const std::vector<bool>& buried = {});
 
 // Cohen 1988's ambient term, for display only: the remaining radiosity
-// (per element, its positive part: light still to come) spread evenly and
-// reflected with the mean reflectance. Never negative.
+// (per element) spread evenly and reflected with the mean reflectance; zero
+// where that sum is negative (an overshooting iterate): light still to
+// come is never negative.
 rgb ambient_radiosity(const patch_mesh& mesh, std::span<const rgb> remaining);
 
 // Area-weighted mean irradiance that did not come straight from an emitter

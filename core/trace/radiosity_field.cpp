@@ -112,7 +112,9 @@ radiosity_field::radiosity_field(const patch_mesh& mesh, std::span<const rgb> ra
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const rgb unshot = mesh.vertex_rho[v] * ambient;  // indirect light by definition
     const rgb reflected = radiosity[v] - mesh.vertex_emission[v] + unshot;
-    vertex_values_[v] = {reflected, direct.empty() ? reflected : reflected - direct[v],
+    // B >= E + direct holds by the solvers' construction; subtracting two
+    // sums can leave a round-off of -1e-17, which is not light taken away.
+    vertex_values_[v] = {reflected, direct.empty() ? reflected : glm::max(reflected - direct[v], rgb(0.0)),
                          caustic.empty() ? rgb(0.0) : caustic[v]};
   }
 

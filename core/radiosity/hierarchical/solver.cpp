@@ -36,8 +36,7 @@ void raise_to_the_direct_light(hierarchical_solver& solver) {
 }
 
 // The direct light (plain links from the emitters, and the point lights
-// straight), and the emitters' light through mirror links; the solution
-// raised to it where new links brought more than it holds.
+// straight), and the emitters' light through mirror links.
 void update_direct(hierarchical_solver& solver) {
   light_parts& light = solver.light;
   std::vector<rgb>& emitted = solver.buffers.emitted;
@@ -48,7 +47,6 @@ void update_direct(hierarchical_solver& solver) {
     light.direct[e] = h.rho[e] * normalised(light.direct[e], emitted[e], h.normalizer[e]) + direct_lamp(solver, e);
     light.mirrored[e] = h.rho[e] * light.mirrored[e];
   }
-  if (light.total.size() == light.direct.size()) raise_to_the_direct_light(solver);
 }
 
 bool tolerance_final(const hierarchical_solver& solver) {
@@ -78,6 +76,7 @@ void refine(hierarchical_solver& solver) {
     solver.progress.links_final = tolerance_final(solver);
     refine_links(solver, solver.progress.tolerance);
     update_direct(solver);
+    raise_to_the_direct_light(solver);  // new links may bring more than the solution holds
   }
   update_residual(solver);
 }
