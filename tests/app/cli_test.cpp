@@ -1,6 +1,10 @@
 // The `bounce` command line, run as a user would: exit codes and messages.
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
 
 #include <algorithm>
 #include <cmath>
@@ -752,6 +756,66 @@ TEST(Cli, OutOfMemoryIsAnErrorNotAnAbort) {
   const run_result r = run_env("ulimit -v 1500000;", "solve generated:interior-1m --until 0.5");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("error: out of memory"), std::string::npos) << r.err;
+}
+
+// A run killed (SIGKILL: nothing can be tidied) while it renders or
+// writes a large picture leaves the old picture byte for byte; a run that
+// finished first has put a whole new one in its place. One kill lands in
+// the solve; another as soon as the picture's partial file appears, in the
+// write (201 MB of PFM: about half a second here).
+TEST(Cli, AKilledRunLeavesTheOldPictureWhole) {
+  scratch_dir dir;
+  const std::string picture = dir.path("pic.pfm");
+  const std::string old(1 << 16, 'o');
+  auto partial_exists = [&] {
+    for (const auto& entry : std::filesystem::directory_iterator(dir.root))
+      if (entry.path().filename().string().starts_with("pic.pfm.partial")) return true;
+    return false;
+  };
+  int killed_solving = 0, killed_writing = 0;
+  for (const bool in_the_write : {false, true}) {
+    dir.write("pic.pfm", old);
+    for (const auto& entry : std::filesystem::directory_iterator(dir.root))
+      if (entry.path().filename().string().starts_with("pic.pfm.partial")) std::filesystem::remove(entry.path());
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      std::freopen("/dev/null", "w", stdout);
+      std::freopen("/dev/null", "w", stderr);
+      execl(BOUNCE_EXE, BOUNCE_EXE, "render", "--quiet", "--max-edge", "150", "--until", "0.05", "--size", "4096x4096",
+            "--out", picture.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    int status = 0;
+    bool reaped = false;
+    if (in_the_write) {
+      // Until the partial file appears or the run ends (at most a minute).
+      for (int i = 0; i < 60000 && !reaped; ++i) {
+        reaped = waitpid(child, &status, WNOHANG) == child;
+        if (!reaped && partial_exists()) {
+          kill(child, SIGKILL);
+          break;
+        }
+        usleep(1000);
+      }
+    } else {
+      usleep(300000);
+      kill(child, SIGKILL);
+    }
+    if (!reaped) {
+      ASSERT_EQ(waitpid(child, &status, 0), child);
+    }
+    const std::string now = read_text(picture);
+    if (WIFSIGNALED(status)) {
+      ++(in_the_write ? killed_writing : killed_solving);
+      EXPECT_EQ(now, old) << (in_the_write ? "killed while writing" : "killed while solving");
+    } else {
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+      EXPECT_EQ(now.size(), std::string("PF\n4096 4096\n-1.0\n").size() + 4096ull * 4096 * 12);
+    }
+  }
+  EXPECT_EQ(killed_solving, 1);
+  std::printf("killed while solving: %d, while writing: %d\n", killed_solving, killed_writing);
 }
 
 TEST(Cli, SolveWritesStatsAndPly) {
