@@ -46,7 +46,10 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       .add_option("--max-steps", o.stop.max_steps,
                   "stop after this many steps (hierarchical: its steps; progressive: shots); 0: no limit")
       ->check(count_at_most(std::numeric_limits<std::uint64_t>::max()));
-  command.add_option("--time", o.stop.seconds, "stop after this many seconds of solving (0: no limit)")
+  command
+      .add_option("--time", o.stop.seconds,
+                  "stop after this many seconds spent in the solver's steps, checked between steps; meshing before "
+                  "the first step is not counted (0: no limit)")
       ->check(number_in(0.0, INFINITY));
   command
       .add_option("--patch-edge", o.patch_edge,
