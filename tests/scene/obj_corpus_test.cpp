@@ -89,6 +89,19 @@ TEST(ObjCorpus, CrOnlyLineEndsReadAsLines) {
   EXPECT_EQ(l.material_of_face(0, 1).ke, rgb(4.0));
 }
 
+// Numbers as C writes them, "-2.e-1" and ".5" and "1e0" included, read as
+// the numbers they are.
+TEST(ObjCorpus, NumbersWithoutDigitsAfterThePointAreRead) {
+  scratch_dir dir;
+  loaded l = load(dir.write("n.obj", "v -2.e-1 .5 0\nv 1e0 0 0\nv 0 0 +1.\nf 1 2 3\n"));
+  ASSERT_TRUE(l.ok) << l.report.error;
+  const polygon_mesh& m = std::get<polygon_mesh>(l.s.surfaces.at(0).geometry);
+  ASSERT_EQ(m.positions.size(), 3u);
+  EXPECT_EQ(m.positions[0], vec3(-0.2, 0.5, 0.0));
+  EXPECT_EQ(m.positions[1], vec3(1.0, 0.0, 0.0));
+  EXPECT_EQ(m.positions[2], vec3(0.0, 0.0, 1.0));
+}
+
 // usemtl before the mtllib that defines it: names are looked up at the end.
 TEST(ObjCorpus, UsemtlBeforeMtllibFindsTheMaterial) {
   scratch_dir dir;
