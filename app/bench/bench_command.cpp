@@ -165,7 +165,7 @@ int run_one_case(const suite_plan& plan, int index, const bench_options& options
             {"out_of_memory", out_of_memory},
             {"curves", curves}};
   const fs::path file = fs::path(out_dir) / "cases" / (std::to_string(index) + ".json");
-  if (std::string e; !write_text(file.string(), j.dump() + "\n", e)) {
+  if (std::string e; !write_file(file.string(), j.dump() + "\n", e)) {
     std::cerr << "error: " << e << "\n";
     return exit_input_error;
   }
@@ -334,7 +334,7 @@ int run_bench_command(const bench_options& options) {
   results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const fs::path json_path = fs::path(options.out_dir) / "bench.json";
-  if (std::string e; !write_text(json_path.string(), results.dump(1) + "\n", e)) std::cerr << "error: " << e << "\n";
+  if (std::string e; !write_file(json_path.string(), results.dump(1) + "\n", e)) std::cerr << "error: " << e << "\n";
   const std::string markdown = write_bench_report(results, options.out_dir);
   std::cout << "\n" << markdown << "\n";
   std::printf("bench: %zu runs in %.1f s; results in %s (bench.json, bench.csv, bench.md, one SVG plot per scene)\n",

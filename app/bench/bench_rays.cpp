@@ -177,7 +177,7 @@ int run_ray_bench(const bench_options& options) {
   md += notes;
   const fs::path json_path = fs::path(options.out_dir) / "rays.json", md_path = fs::path(options.out_dir) / "rays.md";
   std::string error;
-  if (!write_text(json_path.string(), results.dump(1) + "\n", error) || !write_text(md_path.string(), md, error)) {
+  if (!write_file(json_path.string(), results.dump(1) + "\n", error) || !write_file(md_path.string(), md, error)) {
     std::cerr << "error: " << error << "\n";
     return exit_input_error;
   }

@@ -96,7 +96,7 @@ struct report_file {
   std::string path;
   std::ostringstream out;
   ~report_file() {
-    if (std::string e; !write_text(path, out.str(), e)) std::cerr << "error: " << e << "\n";
+    if (std::string e; !write_file(path, out.str(), e)) std::cerr << "error: " << e << "\n";
   }
 };
 
@@ -581,7 +581,7 @@ std::string write_bench_report(const json& results, const std::string& out_dir) 
   growth_section(results, md);
   scale_section(results, md);
   failed_section(results, by_scene, md);
-  if (std::string e; !write_text((fs::path(out_dir) / "bench.md").string(), md.str(), e))
+  if (std::string e; !write_file((fs::path(out_dir) / "bench.md").string(), md.str(), e))
     std::cerr << "error: " << e << "\n";
   return md.str();
 }

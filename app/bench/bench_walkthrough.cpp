@@ -217,8 +217,8 @@ int run_walkthrough_bench(const bench_options& options) {
   }
   results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::string error;
-  if (!write_text((fs::path(options.out_dir) / "walkthrough.json").string(), results.dump(1) + "\n", error) ||
-      !write_text((fs::path(options.out_dir) / "walkthrough.md").string(), md, error)) {
+  if (!write_file((fs::path(options.out_dir) / "walkthrough.json").string(), results.dump(1) + "\n", error) ||
+      !write_file((fs::path(options.out_dir) / "walkthrough.md").string(), md, error)) {
     std::cerr << "error: " << error << "\n";
     return exit_input_error;
   }

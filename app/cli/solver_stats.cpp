@@ -112,7 +112,7 @@ void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
 }
 
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {
-  return write_text(path, stats.dump(2) + "\n", error);
+  return write_file(path, stats.dump(2) + "\n", error);
 }
 
 }  // namespace bounce

@@ -531,7 +531,7 @@ void viewer_app::carry_out(const panel_actions& act, const worker_view& view) {
   if (act.save_layout) save_panel_layout(panel_.layout);
   if (act.save_camera) {
     std::string e;
-    panel_.message = write_text(panel_.camera_path, camera_json(panel_.current_camera), e)
+    panel_.message = write_file(panel_.camera_path, camera_json(panel_.current_camera), e)
                          ? "camera saved: " + std::filesystem::absolute(panel_.camera_path).string() +
                                " (bounce render SCENE --camera FILE)"
                          : e;

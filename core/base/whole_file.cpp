@@ -71,9 +71,9 @@ bool write_whole(const std::string& path,
   return true;
 }
 
-bool write_text(const std::string& path, const std::string& text, std::string& error) {
+bool write_file(const std::string& path, const std::string& bytes, std::string& error) {
   return write_whole(
-      path, [&](const std::string& file, std::string& reason) { return write_bytes(file, text, reason); }, error);
+      path, [&](const std::string& file, std::string& reason) { return write_bytes(file, bytes, reason); }, error);
 }
 
 }  // namespace bounce

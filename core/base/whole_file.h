@@ -23,8 +23,8 @@ bool write_whole(const std::string& path,
 // with the reason.
 bool write_bytes(const std::string& file, const std::string& bytes, std::string& reason);
 
-// `text` as the whole of `path`: write_whole with write_bytes.
-bool write_text(const std::string& path, const std::string& text, std::string& error);
+// `bytes` as the whole of `path`: write_whole with write_bytes.
+bool write_file(const std::string& path, const std::string& bytes, std::string& error);
 
 // The system's words for the last failed call (errno), or `fallback`.
 std::string system_reason(const char* fallback);

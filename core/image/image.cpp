@@ -17,24 +17,18 @@
 
 namespace bounce {
 
+void append_bytes(void* to, void* data, int size) {
+  static_cast<std::string*>(to)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
 bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,
                std::string& error) {
-  return write_whole(
-      path,
-      [&](const std::string& file, std::string& reason) {
-        // Encoded in memory, then written with every write checked (stb's
-        // own file writer does not check them).
-        std::string bytes;
-        auto append = [](void* to, void* data, int size) {
-          static_cast<std::string*>(to)->append(static_cast<const char*>(data), std::size_t(size));
-        };
-        if (!stbi_write_png_to_func(append, &bytes, width, height, channels, rows, width * channels)) {
-          reason = "cannot encode PNG";
-          return false;
-        }
-        return write_bytes(file, bytes, reason);
-      },
-      error);
+  std::string bytes;
+  if (!stbi_write_png_to_func(append_bytes, &bytes, width, height, channels, rows, width * channels)) {
+    error = path + ": cannot encode PNG";
+    return false;
+  }
+  return write_file(path, bytes, error);
 }
 
 std::vector<unsigned char> to_srgb_rows(const image& img, double exposure) {

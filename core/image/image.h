@@ -33,6 +33,11 @@ inline image uniform_image(int width, int height, rgb value) {
 
 // 8-bit RGB(A) rows, row 0 at the top, written as PNG. Returns false with
 // `error` naming the file.
+// stb_image_write's write function into a std::string (its `context`):
+// pictures are encoded in memory, then written whole (base/whole_file.h),
+// every write checked, which stb's own file writers do not do.
+void append_bytes(void* to, void* data, int size);
+
 bool write_png(const std::string& path, int width, int height, int channels, const unsigned char* rows,
                std::string& error);
 

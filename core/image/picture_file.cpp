@@ -67,20 +67,12 @@ bool write_exr(const std::string& path, const image& img, std::string& error) {
 }
 
 bool write_hdr(const std::string& path, const image& img, std::string& error) {
-  return write_whole(
-      path,
-      [&](const std::string& file, std::string& reason) {
-        std::string bytes;
-        auto append = [](void* to, void* data, int size) {
-          static_cast<std::string*>(to)->append(static_cast<const char*>(data), std::size_t(size));
-        };
-        if (!stbi_write_hdr_to_func(append, &bytes, img.width, img.height, 3, img.pixels.data())) {
-          reason = "cannot encode Radiance HDR";
-          return false;
-        }
-        return write_bytes(file, bytes, reason);
-      },
-      error);
+  std::string bytes;
+  if (!stbi_write_hdr_to_func(append_bytes, &bytes, img.width, img.height, 3, img.pixels.data())) {
+    error = path + ": cannot encode Radiance HDR";
+    return false;
+  }
+  return write_file(path, bytes, error);
 }
 
 bool write_picture(const std::string& path, const image& img, double exposure, std::string& error) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -176,12 +177,18 @@ void analytic_occluded(const RTCOccludedFunctionNArguments* args) {
 // A triangle mesh with cut-out materials (material::alpha_cutoff): hits in
 // their holes are rejected, for camera, bounce and shadow rays alike.
 // Copies: the ray scene may outlive the scene it was built from.
+// The scene's materials and the textures of its cut-out ones (the rest
+// left empty), shared by every cut-out mesh.
+struct cut_out_tables {
+  std::vector<material> materials;
+  std::vector<texture> textures;
+};
+
 struct cut_out_mesh {
   std::vector<glm::ivec3> triangles;
   std::vector<vec2> uvs;
   std::vector<int> materials;
-  std::vector<material> table;    // the scene's materials
-  std::vector<texture> textures;  // the scene's, those of cut-out materials only (the rest left empty)
+  std::shared_ptr<const cut_out_tables> tables;
 };
 
 void reject_holes(const RTCFilterFunctionNArguments* args) {
@@ -193,7 +200,8 @@ void reject_holes(const RTCFilterFunctionNArguments* args) {
     const glm::ivec3 t = mesh->triangles[prim];
     const vec2 uv = (1 - u - v) * mesh->uvs[std::size_t(t[0])] + u * mesh->uvs[std::size_t(t[1])] +
                     v * mesh->uvs[std::size_t(t[2])];
-    if (cut_out(mesh->table[std::size_t(mesh->materials[prim])], mesh->textures, uv)) args->valid[i] = 0;
+    if (cut_out(mesh->tables->materials[std::size_t(mesh->materials[prim])], mesh->tables->textures, uv))
+      args->valid[i] = 0;
   }
 }
 
@@ -250,6 +258,7 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
     flat[i] = std::holds_alternative<polygon_mesh>(geometry);
   }
   cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));
+  std::shared_ptr<const cut_out_tables> cut_tables;  // made by the first cut-out mesh
   for (std::size_t i = 0; i < s.surfaces.size(); ++i) {
     const surface& surf = s.surfaces[i];
     embree_state::geometry g;
@@ -286,11 +295,16 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
         g.holes->triangles = g.triangles.triangles;
         g.holes->uvs = g.triangles.uvs;
         g.holes->materials = g.triangles.materials;
-        g.holes->table = s.materials;
-        g.holes->textures.resize(s.textures.size());
-        for (const material& m : s.materials)
-          if (m.alpha_cutoff > 0.0 && m.texture >= 0 && std::size_t(m.texture) < s.textures.size())
-            g.holes->textures[std::size_t(m.texture)] = s.textures[std::size_t(m.texture)];
+        if (!cut_tables) {
+          auto tables = std::make_shared<cut_out_tables>();
+          tables->materials = s.materials;
+          tables->textures.resize(s.textures.size());
+          for (const material& m : s.materials)
+            if (m.alpha_cutoff > 0.0 && m.texture >= 0 && std::size_t(m.texture) < s.textures.size())
+              tables->textures[std::size_t(m.texture)] = s.textures[std::size_t(m.texture)];
+          cut_tables = std::move(tables);
+        }
+        g.holes->tables = cut_tables;
         rtcSetGeometryUserData(geometry, g.holes.get());
         rtcSetGeometryIntersectFilterFunction(geometry, reject_holes);
         rtcSetGeometryOccludedFilterFunction(geometry, reject_holes);

@@ -15,6 +15,7 @@
 #include <stb/stb_image_write.h>
 #include <nlohmann/json.hpp>
 
+#include "image/image.h"
 #include "measure/closed_forms.h"
 #include "mesh_builders.h"
 #include "radiosity/solver.h"
@@ -119,16 +120,17 @@ json unit_quad(gltf_file& f, int material, bool with_normals = true, bool with_u
   return prim;
 }
 
-// A 2x2 PNG: top row red and green, bottom row blue and sRGB grey 128.
+// A 2x2 PNG's bytes, `channels` per texel.
+std::string png_2x2(const unsigned char* pixels, int channels) {
+  std::string out;
+  stbi_write_png_to_func(append_bytes, &out, 2, 2, channels, pixels, 2 * channels);
+  return out;
+}
+
+// Top row red and green, bottom row blue and sRGB grey 128.
 std::string png_2x2() {
   const unsigned char pixels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
-  std::string out;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
-      },
-      &out, 2, 2, 3, pixels, 6);
-  return out;
+  return png_2x2(pixels, 3);
 }
 
 bool load(const std::string& path, scene& s, load_report& report) {
@@ -713,13 +715,7 @@ TEST(Gltf, DracoCompressedSampleOpensWhole) {
 // A 2x2 RGBA PNG: white, the left column opaque, the right one clear.
 std::string png_half_clear() {
   const unsigned char pixels[] = {255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0};
-  std::string out;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
-      },
-      &out, 2, 2, 4, pixels, 8);
-  return out;
+  return png_2x2(pixels, 4);
 }
 
 // alphaMode MASK: a cut-out. The still sees through its holes (camera and
