@@ -21,42 +21,76 @@
 namespace bounce {
 namespace {
 
-// Bounding boxes of the cover's triangles in a coarse grid, so that a
-// piece that does not overlap the cover (most of them: surfaces that only
-// share an edge, or lie apart in the same plane) skips the polygon
-// clipping, which costs far more on large scenes.
-class cover_boxes {
+// The cover: the region of a plane that the pieces taken so far hold, as
+// polygons (an outer ring and its holes) in a coarse grid of their boxes.
+// A piece is clipped only against the polygons whose boxes overlap its own
+// (most pieces, surfaces that share an edge or lie apart in the plane, meet
+// none and skip Clipper), and a piece that overlaps the cover is merged
+// with the polygons it met: stacked copies of one triangle then leave one
+// polygon, not thousands that every later piece is clipped against.
+class cover_set {
  public:
-  void add(const ClipperLib::Paths& paths) {
+  // The live polygons whose boxes overlap one of `paths`' boxes by more
+  // than the rounding of the integer frame (touching does not count).
+  std::vector<int> overlapping(const ClipperLib::Paths& paths) {
+    std::vector<int> out;
+    ++query_;
+    auto take = [&](int i) {
+      if (!alive_[std::size_t(i)] || seen_[std::size_t(i)] == query_) return;
+      for (const ClipperLib::Path& path : paths)
+        if (overlap(bounds(path), boxes_[std::size_t(i)])) {
+          seen_[std::size_t(i)] = query_;
+          out.push_back(i);
+          return;
+        }
+    };
+    for (int i : large_) take(i);
     for (const ClipperLib::Path& path : paths) {
       const box b = bounds(path);
-      const long long x0 = cell(b.x0), x1 = cell(b.x1), y0 = cell(b.y0), y1 = cell(b.y1);
-      const int index = int(boxes_.size());
-      boxes_.push_back(b);
-      if ((x1 - x0 + 1) * (y1 - y0 + 1) > 64) {
-        large_.push_back(index);
-        continue;
-      }
-      for (long long x = x0; x <= x1; ++x)
-        for (long long y = y0; y <= y1; ++y) cells_[{x, y}].push_back(index);
-    }
-  }
-  // Whether some triangle of `paths` overlaps a cover triangle's box by
-  // more than the rounding of the integer frame (touching does not count).
-  bool may_overlap(const ClipperLib::Paths& paths) const {
-    for (const ClipperLib::Path& path : paths) {
-      const box b = bounds(path);
-      for (int i : large_)
-        if (overlap(b, boxes_[i])) return true;
       for (long long x = cell(b.x0); x <= cell(b.x1); ++x)
         for (long long y = cell(b.y0); y <= cell(b.y1); ++y) {
-          auto it = cells_.find({x, y});
-          if (it == cells_.end()) continue;
-          for (int i : it->second)
-            if (overlap(b, boxes_[i])) return true;
+          const auto it = cells_.find({x, y});
+          if (it != cells_.end())
+            for (int i : it->second) take(i);
         }
     }
-    return false;
+    return out;
+  }
+  const ClipperLib::Paths& polygon(int i) const { return polygons_[std::size_t(i)]; }
+  // Each path a polygon of its own (a piece's triangles).
+  void add_each(const ClipperLib::Paths& paths) {
+    for (const ClipperLib::Path& path : paths) add({path});
+  }
+  // Each outer ring of `region` with its holes (islands in holes: their own).
+  void add_region(const ClipperLib::PolyNode& node) {
+    for (const ClipperLib::PolyNode* outer : node.Childs) {
+      ClipperLib::Paths polygon{outer->Contour};
+      for (const ClipperLib::PolyNode* hole : outer->Childs) polygon.push_back(hole->Contour);
+      add(polygon);
+      for (const ClipperLib::PolyNode* hole : outer->Childs) add_region(*hole);
+    }
+  }
+  void add(const ClipperLib::Paths& polygon) {
+    if (polygon.empty() || polygon[0].size() < 3) return;
+    const box b = bounds(polygon[0]);
+    const int index = int(polygons_.size());
+    polygons_.push_back(polygon);
+    boxes_.push_back(b);
+    alive_.push_back(true);
+    seen_.push_back(0);
+    const long long x0 = cell(b.x0), x1 = cell(b.x1), y0 = cell(b.y0), y1 = cell(b.y1);
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > 64) {
+      large_.push_back(index);
+      return;
+    }
+    for (long long x = x0; x <= x1; ++x)
+      for (long long y = y0; y <= y1; ++y) cells_[{x, y}].push_back(index);
+  }
+  // Drops polygon i (its grid entries stay, skipped from now on).
+  void remove(int i) {
+    alive_[std::size_t(i)] = false;
+    ClipperLib::Paths().swap(polygons_[std::size_t(i)]);
+    std::erase(large_, i);
   }
 
  private:
@@ -72,7 +106,11 @@ class cover_boxes {
     return std::min(a.x1, b.x1) - std::max(a.x0, b.x0) > slack && std::min(a.y1, b.y1) - std::max(a.y0, b.y0) > slack;
   }
   static long long cell(long long v) { return v >> 21; }  // |v| <= 2^28: at most 256 cells a side
+  std::vector<ClipperLib::Paths> polygons_;               // outer ring first
   std::vector<box> boxes_;
+  std::vector<bool> alive_;
+  std::vector<unsigned> seen_;
+  unsigned query_ = 0;
   std::vector<int> large_;
   std::map<std::pair<long long, long long>, std::vector<int>> cells_;
 };
@@ -119,13 +157,18 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
       return std::tie(a.emits, a.offset, a.surface, a.material) > std::tie(b.emits, b.offset, b.surface, b.material);
     });
     const plane_frame frame(plane.normal, centre, extent);
-    ClipperLib::Paths cover;
-    cover_boxes cover_index;
+    cover_set cover;
     std::map<std::pair<long long, long long>, vec2> cover_corners;
     for (const piece& p : pieces) {
       triangle_mesh& m = tessellated[p.surface];
       const ClipperLib::Paths own = piece_paths(m, p.triangles, frame);
-      if (!cover.empty() && !own.empty() && cover_index.may_overlap(own)) {
+      if (own.empty()) continue;
+      const std::vector<int> near = cover.overlapping(own);
+      bool overlaps = false;
+      if (!near.empty()) {
+        ClipperLib::Paths over;
+        for (int i : near) over.insert(over.end(), cover.polygon(i).begin(), cover.polygon(i).end());
+        stats.polygons_clipped_against += near.size();
         ClipperLib::Clipper whole, cut;
         whole.PreserveCollinear(true);
         whole.AddPaths(own, ClipperLib::ptSubject, true);
@@ -134,11 +177,12 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
         cut.PreserveCollinear(true);
         cut.StrictlySimple(true);
         cut.AddPaths(own, ClipperLib::ptSubject, true);
-        cut.AddPaths(cover, ClipperLib::ptClip, true);
+        cut.AddPaths(over, ClipperLib::ptClip, true);
         cut.Execute(ClipperLib::ctDifference, after, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
         const double area_before = tree_area(before), area_after = tree_area(after);
         // Only touching the cover (shared edges) leaves the area as it was.
-        if (area_before - area_after > 1e-9 * area_before) {
+        overlaps = area_before - area_after > 1e-9 * area_before;
+        if (overlaps) {
           double old_area = 0.0, new_area = 0.0;
           for (int t : p.triangles) old_area += 0.5 * glm::length(triangle_cross(m, t));
           const std::size_t first_new = m.triangles.size();
@@ -150,10 +194,17 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
           } else {
             ++stats.pieces_left_uncut;  // the overlap stays: said, not hidden
           }
+          // The piece and the rings it overlapped become their union.
+          ClipperLib::Clipper merge;
+          merge.AddPaths(own, ClipperLib::ptSubject, true);
+          merge.AddPaths(over, ClipperLib::ptClip, true);
+          ClipperLib::PolyTree merged;
+          merge.Execute(ClipperLib::ctUnion, merged, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+          for (int i : near) cover.remove(i);
+          cover.add_region(merged);
         }
       }
-      cover.insert(cover.end(), own.begin(), own.end());
-      cover_index.add(own);
+      if (!overlaps) cover.add_each(own);
       for (int t : p.triangles)
         for (int k = 0; k < 3; ++k) {
           const vec3& corner = m.positions[m.triangles[t][k]];

@@ -29,6 +29,10 @@ struct coplanar_cut_stats {
   std::size_t surfaces_cut = 0;       // (surface, material) pieces that lost area
   double area_removed = 0.0;          // scene units squared
   std::size_t pieces_left_uncut = 0;  // covered pieces whose remainder could not be triangulated: left whole
+  // The work done: polygons of the cover a piece was clipped against,
+  // summed over the pieces. Merging keeps it near the number of pieces,
+  // however many of them overlap.
+  std::size_t polygons_clipped_against = 0;
 };
 
 // Cuts coplanar overlaps out of the triangles of flat surfaces, in place.

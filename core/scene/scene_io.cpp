@@ -72,8 +72,10 @@ void warn_unreachable_emitters(const scene& s, load_report& report) {
     vec3 centroid, normal;  // normal: unit, or zero for a degenerate face
   };
   std::vector<face_ref> faces;
-  std::vector<bounds3> curved;  // boxes of curved surfaces: receivers seen from any side
+  std::vector<std::size_t> first_face;  // per surface: where its faces begin in `faces`
+  std::vector<bounds3> curved;          // boxes of curved surfaces: receivers seen from any side
   for (const surface& surf : s.surfaces) {
+    first_face.push_back(faces.size());
     if (const auto* mesh = std::get_if<polygon_mesh>(&surf.geometry)) {
       for (const polygon_face& f : mesh->faces) {
         vec3 newell(0.0), centroid(0.0);
@@ -91,6 +93,7 @@ void warn_unreachable_emitters(const scene& s, load_report& report) {
       curved.push_back(scene_bounds(one));
     }
   }
+  first_face.push_back(faces.size());  // one past the last surface's
   const bounds3 all = scene_bounds(s);
   const double eps = 1e-9 * glm::length(all.max - all.min);
   auto in_front = [&](const vec3& p, const face_ref& f) { return glm::dot(p - f.centroid, f.normal) > eps; };
@@ -105,14 +108,14 @@ void warn_unreachable_emitters(const scene& s, load_report& report) {
   // A scene of many emitting faces is not checked: the test is quadratic.
   if (double(emitting_faces) * double(faces.size()) > 2e7) return;
 
-  for (const surface& surf : s.surfaces) {
-    const auto* mesh = std::get_if<polygon_mesh>(&surf.geometry);
-    if (!mesh) continue;
+  for (std::size_t surface_index = 0; surface_index < s.surfaces.size(); ++surface_index) {
+    const surface& surf = s.surfaces[surface_index];
+    if (!std::holds_alternative<polygon_mesh>(surf.geometry)) continue;
     bool emitting = false, reaches = false;
     std::string material_name;
-    for (const face_ref& e : faces) {
-      if (reaches) break;
-      if (e.mesh != mesh || !emits(e.face->material)) continue;
+    for (std::size_t at = first_face[surface_index]; at < first_face[surface_index + 1] && !reaches; ++at) {
+      const face_ref& e = faces[at];
+      if (!emits(e.face->material)) continue;
       if (!emitting) material_name = s.materials[e.face->material].name;
       emitting = true;
       if (e.normal == vec3(0.0)) continue;

@@ -251,10 +251,11 @@ ray_scene::ray_scene(const scene& s, double patch_edge) : state_(std::make_uniqu
   // surfaces, and which one a ray hits would depend on Embree's traversal.
   std::vector<triangle_mesh> tessellated(s.surfaces.size());
   std::vector<bool> flat(s.surfaces.size(), false);
+  const double edge = patch_edge > 0.0 ? patch_edge : 0.25 * default_max_edge(s);
   for (std::size_t i = 0; i < s.surfaces.size(); ++i) {
     const shape& geometry = s.surfaces[i].geometry;
     if (std::holds_alternative<sphere>(geometry) || std::holds_alternative<quadric>(geometry)) continue;
-    tessellated[i] = tessellate(s.surfaces[i], patch_edge > 0.0 ? patch_edge : 0.25 * default_max_edge(s));
+    tessellated[i] = tessellate(s.surfaces[i], edge);
     flat[i] = std::holds_alternative<polygon_mesh>(geometry);
   }
   cut_coplanar_overlaps(tessellated, flat, s.materials, glm::length(b.max - b.min));

@@ -257,6 +257,60 @@ TEST(CoplanarCut, SurfacesFartherApartThanTheToleranceStayWhole) {
   EXPECT_EQ(cut(load_official(dir, "548.5"), near).surfaces_cut, 1u);
 }
 
+// CAD exports give every triangle an object of its own. Squares 1 x 1,
+// each a surface, stacked along the diagonal d apart: surface i is covered
+// by i + 1 (the later surface ranks higher), so all but the last keep an
+// L of area 2d - d^2, and the plane keeps the union's area. The work stays
+// linear: each piece is clipped against the cover merged so far (one
+// polygon; 1,000 in all), not against every square before it (n^2 / 2).
+TEST(CoplanarCut, ManyStackedSurfacesCostWhatTheirOverlapsCost) {
+  constexpr int n = 1000;
+  constexpr double d = 1e-3;
+  scene s;
+  test_support::add_material(s, rgb(0.5));
+  for (int i = 0; i < n; ++i) {
+    const double o = i * d;
+    test_support::add_polygon(s, {{o, 0, o}, {o, 0, o + 1}, {o + 1, 0, o + 1}, {o + 1, 0, o}}, 0);
+  }
+  std::vector<triangle_mesh> tessellated;
+  const coplanar_cut_stats stats = cut(s, tessellated);
+  EXPECT_EQ(stats.surfaces_cut, std::size_t(n - 1));
+  EXPECT_EQ(stats.pieces_left_uncut, 0u);
+  double total = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double expected = i == n - 1 ? 1.0 : 2 * d - d * d;
+    EXPECT_NEAR(area(tessellated[std::size_t(i)]), expected, 1e-7) << "surface " << i;
+    total += area(tessellated[std::size_t(i)]);
+  }
+  EXPECT_NEAR(total, 1.0 + (n - 1) * (2 * d - d * d), 1e-6);
+  EXPECT_LE(stats.polygons_clipped_against, std::size_t(2 * n));
+}
+
+// The same plane tiled by 5,000 triangles, each a surface: they share
+// edges and nothing is cut; each is clipped only against its neighbours
+// (2,500 polygons in all).
+TEST(CoplanarCut, ManyTouchingSurfacesAreNotCut) {
+  constexpr int side = 50;
+  scene s;
+  test_support::add_material(s, rgb(0.5));
+  for (int x = 0; x < side; ++x)
+    for (int z = 0; z < side; ++z)
+      for (const bool upper : {false, true}) {
+        const vec3 a(x, 0, z), b(x, 0, z + 1), c(x + 1, 0, z + 1), e(x + 1, 0, z);
+        if (upper)
+          test_support::add_polygon(s, {a, b, c}, 0);
+        else
+          test_support::add_polygon(s, {a, c, e}, 0);
+      }
+  std::vector<triangle_mesh> tessellated;
+  const coplanar_cut_stats stats = cut(s, tessellated);
+  EXPECT_EQ(stats.surfaces_cut, 0u);
+  double total = 0.0;
+  for (const triangle_mesh& m : tessellated) total += area(m);
+  EXPECT_NEAR(total, double(side * side), 1e-9);
+  EXPECT_LE(stats.polygons_clipped_against, std::size_t(4 * side * side));
+}
+
 // ---- contacts: the ground under solids ----
 
 // An axis-aligned box [lo, hi] with outward faces, as a solid; without its
