@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
 
 #include <stb/stb_image_write.h>
@@ -52,18 +53,44 @@ std::string check_output_path(const std::string& option, const std::string& path
 }
 
 bool write_exr(const std::string& path, const image& img, std::string& error) {
-  return write_whole(
-      path,
-      [&](const std::string& file, std::string& reason) {
-        const char* message = nullptr;
-        // Half floats: the format's usual storage, 11 bits of mantissa, ample for radiance.
-        if (SaveEXR(img.pixels.data(), img.width, img.height, 3, 1, file.c_str(), &message) == TINYEXR_SUCCESS)
-          return true;
-        reason = "cannot write OpenEXR: " + (message ? std::string(message) : system_reason("unknown reason"));
-        if (message) FreeEXRErrorMessage(message);
-        return false;
-      },
-      error);
+  // Encoded in memory, then written whole: tinyexr's own file writer does
+  // not check its close. Channels are stored B, G, R (the order most
+  // readers expect), as half floats: 11 bits of mantissa, ample for radiance.
+  const std::size_t count = std::size_t(img.width) * std::size_t(img.height);
+  std::vector<float> planes[3];
+  for (int c = 0; c < 3; ++c) {
+    planes[c].resize(count);
+    for (std::size_t i = 0; i < count; ++i) planes[c][i] = img.pixels[3 * i + std::size_t(c)];
+  }
+  float* bgr[3] = {planes[2].data(), planes[1].data(), planes[0].data()};
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.num_channels = 3;
+  exr.images = reinterpret_cast<unsigned char**>(bgr);
+  exr.width = img.width;
+  exr.height = img.height;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  header.num_channels = 3;
+  std::vector<EXRChannelInfo> channels(3);
+  for (int c = 0; c < 3; ++c) channels[std::size_t(c)].name[0] = "BGR"[c];
+  header.channels = channels.data();
+  int pixel_types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+  int stored_types[3] = {TINYEXR_PIXELTYPE_HALF, TINYEXR_PIXELTYPE_HALF, TINYEXR_PIXELTYPE_HALF};
+  header.pixel_types = pixel_types;
+  header.requested_pixel_types = stored_types;
+  unsigned char* memory = nullptr;
+  const char* message = nullptr;
+  const std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &message);
+  if (size == 0) {
+    error = path + ": cannot encode OpenEXR: " + (message ? std::string(message) : "unknown reason");
+    if (message) FreeEXRErrorMessage(message);
+    return false;
+  }
+  const std::string bytes(reinterpret_cast<const char*>(memory), size);
+  std::free(memory);
+  return write_file(path, bytes, error);
 }
 
 bool write_hdr(const std::string& path, const image& img, std::string& error) {

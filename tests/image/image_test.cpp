@@ -1,12 +1,14 @@
-// Image files: PFM and PNG round trips and their errors.
+// Image files: PFM, PNG and OpenEXR round trips and their errors.
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 
 #include <gtest/gtest.h>
+#include <tinyexr.h>
 
 #include "image/image.h"
+#include "image/picture_file.h"
 #include "test_files.h"
 
 namespace bounce {
@@ -52,6 +54,32 @@ TEST(ImageFiles, PngRoundTripAndErrors) {
   image img;
   EXPECT_FALSE(read_pfm(dir.path("a.png"), img, error));
   EXPECT_NE(error.find("not a little-endian colour PFM"), std::string::npos);
+}
+
+// OpenEXR is stored as half floats (11 bits of mantissa): read back with
+// tinyexr's reader, every channel within 2^-11 relative; a picture large
+// enough to be compressed (ZIP), as pictures are.
+TEST(ImageFiles, ExrRoundTripKeepsHalfPrecision) {
+  scratch_dir dir;
+  image img;
+  img.width = 37;
+  img.height = 21;
+  for (int i = 0; i < 3 * 37 * 21; ++i) img.pixels.push_back(float(0.001 + 0.37 * (i % 101) + (i % 3)));
+  std::string error;
+  ASSERT_TRUE(write_exr(dir.path("a.exr"), img, error)) << error;
+  float* rgba = nullptr;
+  int width = 0, height = 0;
+  const char* message = nullptr;
+  ASSERT_EQ(LoadEXR(&rgba, &width, &height, dir.path("a.exr").c_str(), &message), TINYEXR_SUCCESS)
+      << (message ? message : "");
+  ASSERT_EQ(width, 37);
+  ASSERT_EQ(height, 21);
+  for (std::size_t p = 0; p < std::size_t(width * height); ++p)
+    for (std::size_t c = 0; c < 3; ++c)
+      ASSERT_NEAR(rgba[4 * p + c], img.pixels[3 * p + c], img.pixels[3 * p + c] / 2048.0) << p << " " << c;
+  std::free(rgba);
+  EXPECT_FALSE(write_exr("/nonexistent/dir/a.exr", img, error));
+  EXPECT_NE(error.find("/nonexistent/dir/a.exr"), std::string::npos) << error;
 }
 
 }  // namespace
