@@ -15,6 +15,7 @@
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
 #include "cli/solver_stats.h"
+#include "cli/time_limit.h"
 #include "common/exit_code.h"
 #include "headless/offscreen_view.h"
 #include "image/picture_file.h"
@@ -97,6 +98,7 @@ std::string check_render_options(const CLI::App& command, render_options& option
 }
 
 int run_render(const render_options& options) {
+  const setup_time_limit limit(options.solver.stop.seconds);  // loading and meshing count
   scene s;
   if (int code =
           load_for_command(options.scene, &options.camera, s, nullptr,
@@ -225,8 +227,9 @@ int render_scene(const scene& s, const render_options& options) {
   };
   progress_line progress("solving");
   const solver_method method = method_of(run);
-  run_solver(run, solver.stop, [&](const radiosity_solver& st) {
-    progress.update(solve_progress(st.stats.remaining, solver.stop.remaining, st.stats.seconds, solver.stop.seconds),
+  const stop_criterion stop = with_time_left(solver.stop);
+  run_solver(run, stop, [&](const radiosity_solver& st) {
+    progress.update(solve_progress(st.stats.remaining, stop.remaining, st.stats.seconds, stop.seconds),
                     remaining_text(method, st.stats.remaining));
     if (options.panel) history.push_back({st.stats.seconds, st.stats.remaining, st.stats.refinements});
     if (options.frames_dir.empty() || !frames_ok || st.stats.steps == 0) return;
@@ -238,6 +241,7 @@ int render_scene(const scene& s, const render_options& options) {
     write_numbered_frame(st);
   });
   progress.done();
+  warn_about_solve(s, run);
   if (frames_ok && !options.frames_dir.empty() && last_frame_step != run.stats.steps + run.stats.refinements)
     write_numbered_frame(run);  // and the converged picture
   if (!frames_ok) return exit_input_error;

@@ -14,6 +14,7 @@
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
 #include "cli/solver_stats.h"
+#include "cli/time_limit.h"
 #include "common/exit_code.h"
 #include "measure/bench.h"
 #include "mesh/patch_mesh.h"
@@ -49,7 +50,7 @@ int solve_scene(const scene& s, const solve_options& options) {
   auto last_print = clock_type::now();
   std::uint64_t steps_then = 0, rays_then = 0;
   const bool hierarchical = method_of(run) == solver_method::hierarchical;
-  run_solver(run, solver.stop, [&](const radiosity_solver& st) {
+  run_solver(run, with_time_left(solver.stop), [&](const radiosity_solver& st) {
     const auto now = clock_type::now();
     const double dt = std::chrono::duration<double>(now - last_print).count();
     if (dt < 1.0) return;
@@ -95,8 +96,8 @@ int solve_scene(const scene& s, const solve_options& options) {
     if (!h->hierarchy.mirror_links.empty())
       say("links through planar mirrors: %zu (%.1f MiB) over %zu mirror chains\n", h->hierarchy.mirror_links.size(),
           double(h->hierarchy.mirror_links.size() * sizeof(mirror_link)) / (1 << 20), h->hierarchy.chains.size());
-    if (!h->progress.warning.empty()) std::fprintf(stderr, "warning: %s\n", h->progress.warning.c_str());
   }
+  warn_about_solve(s, run);
 
   nlohmann::json stats = solver_stats_json(s, solver, mesh, run, setup.mesh_seconds);
 
@@ -198,6 +199,7 @@ std::string check_solve_options(const CLI::App& command, solve_options& options)
 }
 
 int run_solve(const solve_options& options) {
+  const setup_time_limit limit(options.solver.stop.seconds);  // loading and meshing count
   scene s;
   if (int code = load_for_command(
           options.scene, nullptr, s, nullptr,

@@ -48,8 +48,9 @@ void add_solver_options(CLI::App& command, solver_settings& o) {
       ->check(count_at_most(std::numeric_limits<std::uint64_t>::max()));
   command
       .add_option("--time", o.stop.seconds,
-                  "stop after this many seconds spent in the solver's steps, checked between steps; meshing before "
-                  "the first step is not counted (0: no limit)")
+                  "stop this many seconds after the command's start: loading and meshing count, and a link "
+                  "refinement still running then stops splitting; if loading and meshing alone take longer, the "
+                  "command stops there with exit 1 and writes nothing (0: no limit)")
       ->check(number_in(0.0, INFINITY));
   command
       .add_option("--patch-edge", o.patch_edge,

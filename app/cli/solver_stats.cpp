@@ -7,6 +7,7 @@
 
 #include "base/whole_file.h"
 #include "cli/console.h"
+#include "cli/time_limit.h"
 #include "radiosity/transfer/specular_paths.h"
 
 namespace bounce {
@@ -96,7 +97,9 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
 
 bool start_command_solve(const scene& s, const solver_settings& settings, solve_setup& out) {
   std::string error;
-  if (start_solve(s, settings, out, error)) return true;
+  const bool started = start_solve(s, settings, out, error);
+  setup_finished();
+  if (started) return true;
   std::fprintf(stderr, "error: %s: %s\n", s.source.c_str(), error.c_str());
   return false;
 }
@@ -109,6 +112,18 @@ void warn_about_mesh(const scene& s, const patch_mesh& mesh) {
     std::fprintf(stderr,
                  "warning: %s: %zu coplanar overlap(s) or contact(s) could not be cut out of the surface behind\n",
                  s.source.c_str(), mesh.uncut_overlaps);
+}
+
+void warn_about_solve(const scene& s, const radiosity_solver& solver) {
+  const hierarchical_solver* h = hierarchical_of(solver);
+  if (!h) return;
+  if (!h->progress.warning.empty())
+    std::fprintf(stderr, "warning: %s: %s\n", s.source.c_str(), h->progress.warning.c_str());
+  if (h->progress.links_cut_short)
+    std::fprintf(stderr,
+                 "warning: %s: --time ran out during a link refinement (%zu links): the solution keeps coarser "
+                 "links where it had not reached\n",
+                 s.source.c_str(), h->hierarchy.links.size());
 }
 
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error) {

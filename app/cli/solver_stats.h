@@ -21,12 +21,18 @@ nlohmann::json solver_stats_json(const scene& s, const solver_settings& settings
                                  const radiosity_solver& solver, double mesh_seconds);
 
 // start_solve for a command: when the scene cannot be meshed, prints the
-// error naming the scene on standard error and returns false.
+// error naming the scene on standard error and returns false. Ends the
+// set-up's time limit (time_limit.h).
 bool start_command_solve(const scene& s, const solver_settings& settings, solve_setup& out);
 
 // Warns on standard error about what the mesher had to leave imperfect
 // (non-manifold faces, coplanar overlaps it could not cut).
 void warn_about_mesh(const scene& s, const patch_mesh& mesh);
+
+// Warns on standard error about what the solver had to leave coarse: the
+// link limit, element refinement stopped, a link refinement cut short by
+// --time.
+void warn_about_solve(const scene& s, const radiosity_solver& solver);
 
 // Writes `stats` to `path`; false with `error` (naming the file) on failure.
 bool write_stats(const std::string& path, const nlohmann::json& stats, std::string& error);

@@ -15,6 +15,7 @@
 #include "cli/scene_argument.h"
 #include "cli/solver_options.h"
 #include "cli/solver_stats.h"
+#include "cli/time_limit.h"
 #include "common/exit_code.h"
 #include "image/picture_file.h"
 #include "mesh/patch_mesh.h"
@@ -48,10 +49,13 @@ bool solve(const scene& s, const solver_settings& solver, solved& out) {
   warn_about_mesh(s, *out.setup.mesh);
   progress_line progress("solving");
   const solver_method method = method_of(*out.setup.solver);
-  run_solver(*out.setup.solver, solver.stop, [&](const radiosity_solver& st) {
-    progress.update(solve_progress(st.stats.remaining, solver.stop.remaining, st.stats.seconds, solver.stop.seconds),
+  const stop_criterion stop = with_time_left(solver.stop);
+  run_solver(*out.setup.solver, stop, [&](const radiosity_solver& st) {
+    progress.update(solve_progress(st.stats.remaining, stop.remaining, st.stats.seconds, stop.seconds),
                     remaining_text(method, st.stats.remaining));
   });
+  progress.done();
+  warn_about_solve(s, *out.setup.solver);
   out.solution = make_snapshot(*out.setup.solver);
   return true;
 }
@@ -386,6 +390,7 @@ int trace_scene(const scene& s, const trace_options& options) {
 }  // namespace
 
 int run_trace(const trace_options& options) {
+  const setup_time_limit limit(options.solver.stop.seconds);  // loading and meshing count
   scene s;
   if (int code =
           load_for_command(options.scene, &options.camera, s, nullptr,

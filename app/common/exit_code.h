@@ -1,5 +1,6 @@
 // The exit codes of `bounce`, which every command returns and the tests
-// check: 0 done, 1 an input that cannot be used, 2 a bad command line.
+// check: 0 done, 1 an input that cannot be used (or not within --time), 2 a
+// bad command line.
 #pragma once
 
 namespace bounce {

@@ -34,6 +34,9 @@ struct solver_stats {
   // Hierarchical: its links and the oracle's tolerance (0 otherwise).
   std::uint64_t links = 0;
   double link_tolerance = 0.0;
+  // The last step was ended early by the run's deadline (hierarchical: a
+  // link refinement that stopped splitting): links coarser than asked.
+  bool cut_short = false;
 };
 
 // An immutable copy of a solution, per vertex of the mesh the solver had

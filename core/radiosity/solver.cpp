@@ -46,6 +46,7 @@ solver_stats stats_of(const hierarchical_run& run) {
   out.remaining_final = run.stepped && solution_final(h);
   out.links = h.hierarchy.links.size();
   out.link_tolerance = h.progress.tolerance;
+  out.cut_short = h.progress.links_cut_short;
   return out;
 }
 
@@ -107,10 +108,11 @@ void set_solver_view(radiosity_solver& solver, const std::optional<camera>& view
   update_stats(solver, solver.stats.seconds);  // no longer final
 }
 
-bool step_solver(radiosity_solver& solver) {
+bool step_solver(radiosity_solver& solver, std::chrono::steady_clock::time_point deadline) {
   const auto start = std::chrono::steady_clock::now();
   const bool stepped = std::visit(overloaded{[](std::unique_ptr<progressive_state>& p) { return step_progressive(*p); },
-                                             [](std::unique_ptr<hierarchical_run>& run) {
+                                             [&](std::unique_ptr<hierarchical_run>& run) {
+                                               run->solver->deadline = deadline;
                                                if (!step_hierarchical(*run->solver, run->refine_below)) return false;
                                                run->stepped = true;
                                                publish(*run);
@@ -142,7 +144,13 @@ bool stop_reached(const radiosity_solver& solver, const stop_criterion& stop) {
 
 void run_solver(radiosity_solver& solver, const stop_criterion& stop,
                 const std::function<void(const radiosity_solver&)>& on_step) {
-  while (!stop_reached(solver, stop) && step_solver(solver))
+  // The time left, as a deadline a long step (a link refinement) heeds.
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = stop.seconds > 0.0
+                            ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                          std::chrono::duration<double>(stop.seconds - solver.stats.seconds))
+                            : std::chrono::steady_clock::time_point::max();
+  while (!stop_reached(solver, stop) && step_solver(solver, deadline))
     if (on_step) on_step(solver);
 }
 

@@ -11,6 +11,7 @@
 // solver_method, without touching the other two.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -59,8 +60,11 @@ std::unique_ptr<radiosity_solver> make_radiosity_solver(const scene& s, const pa
 void restart_solver(radiosity_solver& solver);
 
 // One step of the solver; updates solver.stats. Returns false when
-// nothing is left to do.
-bool step_solver(radiosity_solver& solver);
+// nothing is left to do. A step still running at `deadline` ends early
+// where it can (the hierarchical link refinement stops splitting pairs;
+// stats.cut_short says so); other work runs to the step's end.
+bool step_solver(radiosity_solver& solver,
+                 std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 // Leads the solver's refinement by `view` from now on, or by no view
 // (the hierarchical solver: view_importance.h), keeping what is refined;
@@ -71,7 +75,8 @@ void set_solver_view(radiosity_solver& solver, const std::optional<camera>& view
 bool stop_reached(const radiosity_solver& solver, const stop_criterion& stop);
 
 // Steps until `stop` holds (counted from the solver's start) or nothing is
-// left; `on_step` (may be empty) runs after every step.
+// left; `on_step` (may be empty) runs after every step. The time limit is
+// also the steps' deadline: a link refinement still running then stops.
 void run_solver(radiosity_solver& solver, const stop_criterion& stop,
                 const std::function<void(const radiosity_solver&)>& on_step = {});
 

@@ -758,6 +758,24 @@ TEST(Cli, OutOfMemoryIsAnErrorNotAnAbort) {
   EXPECT_NE(r.err.find("error: out of memory"), std::string::npos) << r.err;
 }
 
+// --time counts from the command's start. Meshing a million triangles
+// takes far longer than a second: the command stops at the limit, exit 1,
+// saying so, with nothing written. A link refinement still running at the
+// limit stops splitting, and the run ends with its picture and a warning
+// (at link tolerance 1e-9 one refinement took 21 s here).
+TEST(Cli, TheTimeLimitCoversMeshingAndLinkRefinement) {
+  scratch_dir dir;
+  const run_result meshing = run("solve generated:interior-1m --time 1 --stats " + dir.path("s.json"));
+  EXPECT_EQ(meshing.code, 1) << meshing.err;
+  EXPECT_NE(meshing.err.find("error: --time 1 s ran out while loading and meshing the scene"), std::string::npos)
+      << meshing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("s.json")));
+  const run_result linking = run("render --size 32x32 --link-tolerance 1e-9 --time 3 --out " + dir.path("a.png"));
+  EXPECT_EQ(linking.code, 0) << linking.err;
+  EXPECT_NE(linking.err.find("--time ran out during a link refinement"), std::string::npos) << linking.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("a.png")));
+}
+
 // A run killed (SIGKILL: nothing can be tidied) while it renders or
 // writes a large picture leaves the old picture byte for byte; a run that
 // finished first has put a whole new one in its place. One kill lands in

@@ -33,11 +33,18 @@ struct refine_context {
   std::atomic<std::size_t> count{0};
   std::atomic<std::uint64_t> rays{0};
   std::atomic<bool> limit_hit{false};
+  std::atomic<bool> out_of_time{false};
 
   bool leaves(int i, int j) const {
     return solver.hierarchy.tree.nodes[std::size_t(i)].leaf() && solver.hierarchy.tree.nodes[std::size_t(j)].leaf();
   }
-  bool splittable(int i, int j) const { return !leaves(i, j) && !limit_hit.load(std::memory_order_relaxed); }
+  bool splittable(int i, int j) { return !leaves(i, j) && !limit_hit.load(std::memory_order_relaxed) && !time_is_up(); }
+  bool time_is_up() {
+    if (out_of_time.load(std::memory_order_relaxed)) return true;
+    if (std::chrono::steady_clock::now() < solver.deadline) return false;
+    out_of_time.store(true, std::memory_order_relaxed);
+    return true;
+  }
   int rays_for(int i, int j) const {
     return leaves(i, j) ? solver.params.leaf_visibility_rays : solver.params.visibility_rays;
   }
@@ -104,6 +111,11 @@ void refine_pair(refine_context& ctx, int i, int j, int c) {
 // An existing plain link at a new tolerance (or on a refined tree): split
 // by the same rule, with the visibility it already has; else kept as it is.
 void reexamine(refine_context& ctx, const hierarchy_link& link) {
+  if (ctx.time_is_up()) {  // kept as it is, without the oracle's look
+    ctx.links.local().push_back(link);
+    ctx.count_link();
+    return;
+  }
   const hierarchical_solver& solver = ctx.solver;
   const int i = link.receiver, j = link.source;
   const link_estimate e = estimate(solver, i, j);
@@ -204,6 +216,10 @@ void refine_links(hierarchical_solver& solver, double tolerance) {
     solver.progress.warning = "link limit reached (" + std::to_string(h.links.size()) + " links, " +
                               std::to_string(h.links.size() * sizeof(hierarchy_link) >> 20) +
                               " MiB): the solution keeps coarser links there";
+  // Cut short by the time limit: the links are not yet those of the
+  // tolerance, and a run that goes on refines them again.
+  solver.progress.links_cut_short = ctx.out_of_time.load();
+  if (ctx.out_of_time) solver.progress.links_final = false;
   update_normalizer(solver, node_e);
 }
 

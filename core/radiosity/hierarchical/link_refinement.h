@@ -17,7 +17,9 @@ namespace bounce {
 // fraction of the power leaving all surfaces, at least the emitted power),
 // or makes the first links when there are none; remakes the links through
 // mirrors, the split marks and the closed-scene normaliser. Past
-// params.max_links no pair is split further and progress.warning says so.
+// params.max_links no pair is split further and progress.warning says so;
+// past solver.deadline neither, and progress.links_cut_short says so (the
+// links are then not final).
 void refine_links(hierarchical_solver& solver, double tolerance);
 
 }  // namespace bounce

@@ -56,8 +56,8 @@ bool tolerance_final(const hierarchical_solver& solver) {
 // The first step: the coarsest links, then one Jacobi sweep from B = E:
 // the direct light.
 void first_links(hierarchical_solver& solver) {
-  refine_links(solver, solver.progress.tolerance);
   solver.progress.links_final = tolerance_final(solver);
+  refine_links(solver, solver.progress.tolerance);
   update_direct(solver);
   jacobi_sweep(solver, right_hand_side(solver), solver.light.total);
   ++solver.progress.operator_applications;
@@ -71,7 +71,8 @@ void refine(hierarchical_solver& solver) {
   solver.progress.previous_residual = INFINITY;
   const bool remeshed = splits_pending(solver) && split_marked_elements(solver);
   const double next = std::max(solver.params.tolerance, solver.progress.tolerance / solver.params.refine_factor);
-  if (next < solver.progress.tolerance || remeshed || solver.view.retarget) {
+  const bool cut_short = tolerance_final(solver) && !solver.progress.links_final;  // by a time limit
+  if (next < solver.progress.tolerance || remeshed || solver.view.retarget || cut_short) {
     solver.progress.tolerance = next;
     solver.progress.links_final = tolerance_final(solver);
     refine_links(solver, solver.progress.tolerance);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -131,6 +132,9 @@ struct hierarchy_progress {
   double specular_shot_fraction = 1.0;    // share of the reflected power the last pass shot itself
   std::size_t split_marks = 0;            // elements marked for bisection, over all passes
   std::string warning;                    // e.g. the link limit was reached
+  // The last link refinement was cut short by the deadline: its links are
+  // coarser than the tolerance asks where it had not yet reached.
+  bool links_cut_short = false;
 };
 
 struct hierarchical_solver {
@@ -156,6 +160,9 @@ struct hierarchical_solver {
   std::vector<std::uint8_t> split_marks;
   mutable transport_buffers buffers;
   hierarchy_progress progress;
+  // The run's time limit: past it, link refinement splits no more pairs
+  // (the rest stay links as they are) and the step ends.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 
   const patch_mesh& mesh() const { return *meshes.current; }
 };

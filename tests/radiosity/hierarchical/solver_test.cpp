@@ -1,9 +1,12 @@
 // The hierarchical solver against exact answers, the element-level
 // solution it converges to, and how its steps refine and publish.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+
+#include <chrono>
 
 #include <gtest/gtest.h>
 
@@ -136,6 +139,47 @@ TEST(Hierarchical, RefinesBetweenIterationsAndPublishesEveryStep) {
   EXPECT_EQ(refinements, 4);  // the first links and three refinements
   EXPECT_DOUBLE_EQ(tolerance, 1e-5);
   EXPECT_LT(solver->stats.remaining, 1e-6);
+}
+
+// A time limit holds within a step: the link refinement stops splitting at
+// the deadline, keeps what it has as links (coarser than asked) and says
+// so. At link tolerance 1e-9 the Cornell box's refinement alone took 21 s
+// here; a 1 s limit must end the run within a few seconds, with a solution
+// that is finite and not negative.
+TEST(Hierarchical, ATimeLimitCutsALinkRefinementShort) {
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 40.0);
+  auto solver = make_radiosity_solver(s, mesh, hierarchical(1e-9));
+  run_solver(*solver, stop_criterion{0.0, 0, 1.0});
+  const hierarchical_solver& h = *hierarchical_of(*solver);
+  EXPECT_TRUE(solver->stats.cut_short);
+  EXPECT_FALSE(h.progress.links_final);
+  EXPECT_FALSE(solver->stats.remaining_final);
+  EXPECT_LT(solver->stats.seconds, 8.0);
+  for (const rgb& b : make_snapshot(*solver)->radiosity)
+    for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(b[c]) && b[c] >= 0.0) << b[c];
+}
+
+// Cut short at once (a deadline already past), the first links are the
+// root's; stepping on without a limit refines them again at every
+// tolerance and reaches the solution of a run never cut short.
+TEST(Hierarchical, ARunCutShortRefinesAgainWhenItGoesOn) {
+  const scene s = cornell();
+  const patch_mesh mesh = mesh_of(s, 40.0);
+  auto whole = make_radiosity_solver(s, mesh, hierarchical(1e-5));
+  solve(*whole, 1e-6);
+  auto cut = make_radiosity_solver(s, mesh, hierarchical(1e-5));
+  ASSERT_TRUE(step_solver(*cut, std::chrono::steady_clock::time_point::min()));
+  EXPECT_TRUE(cut->stats.cut_short);
+  const std::size_t first_links = hierarchical_of(*cut)->hierarchy.links.size();
+  EXPECT_LT(first_links, hierarchical_of(*whole)->hierarchy.links.size() / 10);
+  solve(*cut, 1e-6);
+  EXPECT_FALSE(cut->stats.cut_short);
+  EXPECT_TRUE(hierarchical_of(*cut)->progress.links_final);
+  EXPECT_GT(hierarchical_of(*cut)->hierarchy.links.size(), 10 * first_links);
+  const auto a = make_snapshot(*cut)->radiosity, b = make_snapshot(*whole)->radiosity;
+  EXPECT_LT(integral_over_elements(mesh, a).g / integral_over_elements(mesh, b).g - 1.0, 0.01);
+  EXPECT_GT(integral_over_elements(mesh, a).g / integral_over_elements(mesh, b).g - 1.0, -0.01);
 }
 
 TEST(Hierarchical, ParallelAndSerialRunsAgree) {
