@@ -7,9 +7,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "base/memory_room.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
 #include "common/exit_code.h"
+#include "radiosity/memory_estimate.h"
 #include "scene/scene_info.h"
 #include "trace/back_faces.h"
 
@@ -46,8 +48,20 @@ int run_info(const info_options& options) {
   const double back_faces = back_face_fraction(s, s.view, ray_scene(s));
   if (const std::string w = back_face_warning(back_faces); !w.empty())
     std::cerr << "warning: " << s.source << ": " << w << "\n";
+  // What a solve with the default settings (and --max-edge) will need.
+  solver_settings settings;
+  settings.max_edge = options.max_edge;
+  const solve_memory need = estimate_solve_memory(s, settings);
+  const memory_room room = available_memory();
   if (options.as_json) {
     nlohmann::json j = {
+        {"memory",
+         {{"elements", need.elements},
+          {"max_edge", need.max_edge},
+          {"solve_bytes", need.bytes},
+          {"link_bytes_max", need.link_bytes},
+          {"available_bytes", std::isfinite(room.bytes) ? nlohmann::json(room.bytes) : nlohmann::json()},
+          {"available_bound", room.bound}}},
         {"back_face_fraction", back_faces},
         {"scene", s.source},
         {"surfaces", sum.surfaces},
@@ -98,7 +112,10 @@ int run_info(const info_options& options) {
             << (sum.suns ? ", " + std::to_string(sum.suns) + " sun(s)" : "") << (sum.sky ? ", a sky" : "") << "\n"
             << "bounds:     " << format_vec3(sum.bounds.min) << " to " << format_vec3(sum.bounds.max) << "\n"
             << "camera:     eye " << format_vec3(s.view.eye) << ", target " << format_vec3(s.view.target) << ", fov "
-            << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n";
+            << s.view.fov_y_degrees << ", " << s.view.width << "x" << s.view.height << "\n"
+            << "memory:     at least " << format_bytes(need.bytes) << " to solve (" << describe(need)
+            << "), links up to " << format_bytes(need.link_bytes) << " more; " << format_bytes(room.bytes)
+            << " available (" << room.bound << ")\n";
   return exit_ok;
 }
 

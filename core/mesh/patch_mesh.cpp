@@ -230,26 +230,31 @@ glm::ivec3 face_vertices(const om_mesh& m, om_mesh::FaceHandle f) {
 
 }  // namespace
 
-bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error) {
-  const double max_edge = params.max_edge > 0.0 ? params.max_edge : default_max_edge(s);
-  const double cos_crease = std::cos(glm::radians(params.crease_angle_degrees));
-
-  // Refuse absurd requests before allocating: curved surfaces by their
-  // tessellation estimate, flat ones by area (bisection leaves triangles of
-  // about max_edge^2 / 4 or more).
+double estimate_patch_elements(const scene& s, double max_edge) {
   double estimate = 0.0;
   for (const surface& surf : s.surfaces) {
     if (const auto* mesh = std::get_if<polygon_mesh>(&surf.geometry)) {
-      triangle_mesh flat = triangulate(*mesh);
-      for (const glm::ivec3& t : flat.triangles)
-        estimate += 0.5 *
-                    glm::length(glm::cross(flat.positions[t[1]] - flat.positions[t[0]],
-                                           flat.positions[t[2]] - flat.positions[t[0]])) /
-                    (0.25 * max_edge * max_edge);
+      for (const polygon_face& f : mesh->faces) {
+        if (f.position.size() < 3) continue;
+        vec3 newell(0.0);  // twice the face's vector area
+        for (std::size_t k = 0; k < f.position.size(); ++k)
+          newell += glm::cross(mesh->positions[std::size_t(f.position[k])],
+                               mesh->positions[std::size_t(f.position[(k + 1) % f.position.size()])]);
+        estimate += std::max(double(f.position.size() - 2), 0.5 * glm::length(newell) / (0.25 * max_edge * max_edge));
+      }
     } else {
       estimate += double(estimate_triangles(surf, max_edge));
     }
   }
+  return estimate;
+}
+
+bool make_patch_mesh(const scene& s, const mesher_params& params, patch_mesh& out, std::string& error) {
+  const double max_edge = params.max_edge > 0.0 ? params.max_edge : default_max_edge(s);
+  const double cos_crease = std::cos(glm::radians(params.crease_angle_degrees));
+
+  // Refuse absurd requests before allocating.
+  const double estimate = estimate_patch_elements(s, max_edge);
   if (estimate > double(max_patch_elements)) {
     char text[160];  // %g: the estimate may be far beyond any integer type
     std::snprintf(text, sizeof text, "max edge %g would make %s %.3g elements (limit %zu); use a larger --max-edge",

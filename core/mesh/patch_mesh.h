@@ -93,6 +93,13 @@ struct mesher_params {
 // Largest mesh make_patch_mesh builds; past it, a clear error.
 inline constexpr std::size_t max_patch_elements = 5'000'000;
 
+// About how many elements make_patch_mesh makes at `max_edge`, before
+// anything is allocated: curved surfaces by their tessellation estimate,
+// flat triangles by area (bisection leaves triangles of about max_edge^2 / 4
+// or more), and at least one element each. A double: absurd requests
+// overflow any integer.
+double estimate_patch_elements(const scene& s, double max_edge);
+
 // Builds the patch mesh with OpenMesh: every surface tessellated, welded
 // into one connected mesh per smooth piece, and flat faces refined by
 // longest-edge bisection (Rivara) until no edge exceeds max_edge. An edge

@@ -2,10 +2,23 @@
 
 #include <chrono>
 
+#include "base/memory_room.h"
+#include "radiosity/memory_estimate.h"
+
 namespace bounce {
 
 bool mesh_for_solve(const scene& s, const solver_settings& settings, solve_setup& out, std::string& error) {
   const auto start = std::chrono::steady_clock::now();
+  // A scene too large for the memory left is refused before the mesher
+  // allocates anything (memory_estimate.h: the estimate is the least a
+  // solve of it takes). Past the element limit the mesher says so itself.
+  const solve_memory need = estimate_solve_memory(s, settings);
+  const memory_room room = available_memory();
+  if (need.elements <= double(max_patch_elements) && need.bytes > room.bytes) {
+    error = "solving needs at least " + format_bytes(need.bytes) + " (" + describe(need) + "), more than the " +
+            format_bytes(room.bytes) + " available (" + room.bound + "); use a larger --max-edge";
+    return false;
+  }
   auto mesh = std::make_shared<patch_mesh>();
   refinement_pass a_priori;
   mesher_params mesher = mesher_params_for(settings, s);

@@ -20,8 +20,9 @@ struct solve_setup {
 
 // Meshes `s` as `settings` ask (mesher_params_for) and makes the solver
 // over the mesh at B = E. `s` must outlive the setup. Returns false with
-// the mesher's `error` when the mesh cannot be built (past the element
-// limit); `out` is then untouched.
+// the `error` when the mesh cannot be built (past the element limit, or
+// needing more memory than is available: memory_estimate.h); `out` is
+// then untouched.
 bool start_solve(const scene& s, const solver_settings& settings, solve_setup& out, std::string& error);
 
 // start_solve's two halves, for a caller that must keep its old solver

@@ -5,6 +5,8 @@
 // photon_map.cpp.
 #pragma once
 
+#include <cstdint>
+
 #include <memory>
 #include <vector>
 
@@ -21,6 +23,12 @@ struct photon {
   vec3 normal{0.0};  // unit shading normal of the side it landed on
   int surface = -1;  // the side it landed on (the back of a two-sided surface has its own index)
 };
+
+// Memory of a photon map of `count` photons: the photons and the k-d
+// tree's index over them (a figure checked before tracing them).
+inline double photon_map_bytes(double count) {
+  return count * double(sizeof(photon) + 2 * sizeof(std::uint32_t));
+}
 
 // How photons count by their distance d from the query point within the
 // radius r.
