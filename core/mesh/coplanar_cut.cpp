@@ -163,30 +163,46 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
       triangle_mesh& m = tessellated[p.surface];
       const ClipperLib::Paths own = piece_paths(m, p.triangles, frame);
       if (own.empty()) continue;
-      const std::vector<int> near = cover.overlapping(own);
+      // Only the piece's triangles whose boxes overlap the cover take part:
+      // a floor of a million triangles under one rug is one piece, and
+      // Clipper on all of it costs far more than on the few under the rug.
+      piece under = p;
+      under.triangles.clear();
+      ClipperLib::Paths subject;
+      std::vector<int> met;  // the cover's polygons those overlap
+      for (int t : p.triangles) {
+        const ClipperLib::Paths triangle = piece_paths(m, {t}, frame);
+        if (triangle.empty()) continue;
+        const std::vector<int> near = cover.overlapping(triangle);
+        if (near.empty()) continue;
+        under.triangles.push_back(t);
+        subject.push_back(triangle[0]);
+        met.insert(met.end(), near.begin(), near.end());
+      }
+      std::sort(met.begin(), met.end());
+      met.erase(std::unique(met.begin(), met.end()), met.end());
+      stats.polygons_clipped_against += met.size();
       bool overlaps = false;
-      if (!near.empty()) {
+      if (!met.empty()) {
         ClipperLib::Paths over;
-        for (int i : near) over.insert(over.end(), cover.polygon(i).begin(), cover.polygon(i).end());
-        stats.polygons_clipped_against += near.size();
-        ClipperLib::Clipper whole, cut;
-        whole.PreserveCollinear(true);
-        whole.AddPaths(own, ClipperLib::ptSubject, true);
-        ClipperLib::PolyTree before, after;
-        whole.Execute(ClipperLib::ctUnion, before, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        for (int i : met) over.insert(over.end(), cover.polygon(i).begin(), cover.polygon(i).end());
+        ClipperLib::PolyTree after;
+        ClipperLib::Clipper cut;
         cut.PreserveCollinear(true);
         cut.StrictlySimple(true);
-        cut.AddPaths(own, ClipperLib::ptSubject, true);
+        cut.AddPaths(subject, ClipperLib::ptSubject, true);
         cut.AddPaths(over, ClipperLib::ptClip, true);
         cut.Execute(ClipperLib::ctDifference, after, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-        const double area_before = tree_area(before), area_after = tree_area(after);
+        double area_before = 0.0;  // the triangles do not overlap: their sum is their union's
+        for (const ClipperLib::Path& path : subject) area_before += std::abs(ClipperLib::Area(path));
+        const double area_after = tree_area(after);
         // Only touching the cover (shared edges) leaves the area as it was.
         overlaps = area_before - area_after > 1e-9 * area_before;
         if (overlaps) {
           double old_area = 0.0, new_area = 0.0;
-          for (int t : p.triangles) old_area += 0.5 * glm::length(triangle_cross(m, t));
+          for (int t : under.triangles) old_area += 0.5 * glm::length(triangle_cross(m, t));
           const std::size_t first_new = m.triangles.size();
-          if (replace_piece(m, p, after, frame, cover_corners, removed[p.surface])) {
+          if (replace_piece(m, under, after, frame, cover_corners, removed[p.surface])) {
             for (std::size_t t = first_new; t < m.triangles.size(); ++t)
               new_area += 0.5 * glm::length(triangle_cross(m, int(t)));
             ++stats.surfaces_cut;
@@ -194,17 +210,26 @@ coplanar_cut_stats cut_coplanar_overlaps(std::vector<triangle_mesh>& tessellated
           } else {
             ++stats.pieces_left_uncut;  // the overlap stays: said, not hidden
           }
-          // The piece and the rings it overlapped become their union.
-          ClipperLib::Clipper merge;
-          merge.AddPaths(own, ClipperLib::ptSubject, true);
-          merge.AddPaths(over, ClipperLib::ptClip, true);
-          ClipperLib::PolyTree merged;
-          merge.Execute(ClipperLib::ctUnion, merged, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-          for (int i : near) cover.remove(i);
-          cover.add_region(merged);
         }
       }
-      if (!overlaps) cover.add_each(own);
+      // The cover grows by the piece. A small piece that overlapped it is
+      // merged with the polygons it met (stacked copies then stay one
+      // polygon); a large one adds its triangles, which may overlap what
+      // they cover.
+      std::size_t met_corners = 0;
+      for (int i : met)
+        for (const ClipperLib::Path& ring : cover.polygon(i)) met_corners += ring.size();
+      if (overlaps && own.size() <= 64 && met_corners <= 4096) {
+        ClipperLib::Clipper merge;
+        merge.AddPaths(own, ClipperLib::ptSubject, true);
+        for (int i : met) merge.AddPaths(cover.polygon(i), ClipperLib::ptClip, true);
+        ClipperLib::PolyTree merged;
+        merge.Execute(ClipperLib::ctUnion, merged, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        for (int i : met) cover.remove(i);
+        cover.add_region(merged);
+      } else {
+        cover.add_each(own);
+      }
       for (int t : p.triangles)
         for (int k = 0; k < 3; ++k) {
           const vec3& corner = m.positions[m.triangles[t][k]];
