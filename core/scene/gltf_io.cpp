@@ -984,7 +984,7 @@ gltf_read_result read_gltf(const std::string& path, std::vector<material>& mater
       line = without_data_uris(line);
       // nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: ..."
       if (line.rfind("[json.exception.", 0) == 0 && line.find("] ") != std::string::npos)
-        line = "invalid JSON: " + line.substr(line.find("] ") + 2);
+        line = "invalid JSON: " + json_parse_reason(line.substr(line.find("] ") + 2));
       // tinygltf's "File not found : x.bin", for buffers
       if (line.rfind("File not found : ", 0) == 0)
         line = "cannot read '" + line.substr(17) + "' (a buffer the file names)";

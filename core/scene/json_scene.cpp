@@ -68,7 +68,8 @@ json parse_json(const std::string& path, const std::string& text) {
     if (std::size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
     if (std::size_t colon = what.find(": "); what.rfind("syntax error", 0) != 0 && colon != std::string::npos)
       what = what.substr(colon + 2);
-    throw load_error(path + ":" + line_column(text, e.byte == 0 ? 0 : e.byte - 1) + ": invalid JSON: " + what);
+    throw load_error(path + ":" + line_column(text, e.byte == 0 ? 0 : e.byte - 1) +
+                     ": invalid JSON: " + json_parse_reason(what));
   }
 }
 

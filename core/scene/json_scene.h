@@ -27,8 +27,9 @@ struct json_reader {
   using json = nlohmann::json;
   std::string file;
 
+  // `where` and `what` may quote the file (keys, names): kept to one line.
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw load_error(file + ": " + where + ": " + what);
+    throw load_error(file + ": " + one_line(where) + ": " + one_line(what, 300));
   }
 
   void only_keys(const json& j, const std::string& where, std::initializer_list<const char*> allowed) const {

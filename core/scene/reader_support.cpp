@@ -90,6 +90,27 @@ texture decode_image_texture(std::string_view bytes, const std::string& name, co
   return t;
 }
 
+std::string json_parse_reason(std::string reason) {
+  constexpr std::size_t kept = 40;
+  const std::string marker = "last read: '";
+  if (const std::size_t at = reason.find(marker); at != std::string::npos) {
+    const std::size_t start = at + marker.size();
+    std::size_t end = reason.find("'; ", start);  // what follows the quote, if anything
+    if (end == std::string::npos) end = reason.size() - (reason.ends_with("'") ? 1 : 0);
+    if (end - start > kept) reason.replace(start, end - start - kept, "...");
+  }
+  for (char& c : reason)
+    if (static_cast<unsigned char>(c) >= 0x80) c = '?';  // the parser's reason may quote broken UTF-8
+  return one_line(std::move(reason), 300);
+}
+
+std::string one_line(std::string text, std::size_t longest) {
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  if (text.size() > longest) text = text.substr(0, longest / 2) + " ... " + text.substr(text.size() - longest / 2);
+  return text;
+}
+
 std::string format_value(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", v);

@@ -75,6 +75,17 @@ texture read_image_texture(const std::string& path, const std::string& name, con
 texture decode_image_texture(std::string_view bytes, const std::string& name, const std::string& where,
                              const std::string& what);
 
+// Text from a file as a message may quote it (a key, a name): on one line,
+// control characters shown as '?', and at most `longest` bytes (the middle
+// of a longer one left out).
+std::string one_line(std::string text, std::size_t longest = 120);
+
+// A JSON parser's reason for a message: nlohmann quotes what it "last
+// read", which for a long string is the input at length, bytes of any
+// kind included; kept to its last 40 characters, on one line, with bytes
+// that are not printable ASCII shown as '?'.
+std::string json_parse_reason(std::string reason);
+
 // Numbers in the model readers' messages: %g, and a grey colour as one number.
 std::string format_value(double v);
 std::string format_value(const rgb& c);

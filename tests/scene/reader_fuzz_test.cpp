@@ -94,6 +94,9 @@ void expect_loaded_or_refused(const std::string& path, const std::string& file_n
   if (!load_scene(path, s, report)) {
     ++seen.refused;
     EXPECT_FALSE(report.error.empty()) << mutant;
+    // One line, never the input echoed at length.
+    EXPECT_EQ(report.error.find('\n'), std::string::npos) << report.error;
+    EXPECT_LT(report.error.size(), 400u) << report.error;
     EXPECT_NE(report.error.find(file_name), std::string::npos) << report.error << "\n--- mutant:\n" << mutant;
     return;
   }
