@@ -109,6 +109,13 @@ int run_render(const render_options& options) {
 }
 
 int render_scene(const scene& s, const render_options& options) {
+  // The picture: colour and depth per sample, and the linear read-back.
+  const double pixels = double(s.view.width) * double(s.view.height);
+  const double picture_bytes = pixels * (8.0 * std::max(1, options.msaa) + 3.0 * sizeof(float));
+  char what[96];
+  std::snprintf(what, sizeof what, "the %dx%d picture at %d samples", s.view.width, s.view.height,
+                std::max(1, options.msaa));
+  if (!fits_in_memory(s, picture_bytes, what, "use a smaller --size or --msaa")) return exit_input_error;
   solver_settings solver = options.solver;
   if (!options.view_independent) solver.view = s.view;  // the picture leads (hierarchical only)
   solve_setup setup;

@@ -1,9 +1,11 @@
 #include "cli/scene_argument.h"
 
+#include <cstdio>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
+#include "base/memory_room.h"
 #include "cli/option_values.h"
 #include "common/exit_code.h"
 #include "scene/camera_file.h"
@@ -80,6 +82,15 @@ int load_for_command(const std::string& path, const camera_options* camera_overr
     }
   }
   return exit_ok;
+}
+
+bool fits_in_memory(const scene& s, double bytes, const std::string& what, const std::string& advice) {
+  const memory_room room = available_memory();
+  if (bytes <= room.bytes) return true;
+  std::fprintf(stderr, "error: %s: %s needs at least %s, more than the %s available (%s); %s\n", s.source.c_str(),
+               what.c_str(), format_bytes(bytes).c_str(), format_bytes(room.bytes).c_str(), room.bound.c_str(),
+               advice.c_str());
+  return false;
 }
 
 }  // namespace bounce

@@ -33,4 +33,10 @@ void add_scene_argument(CLI::App& command, std::string& path);
 int load_for_command(const std::string& path, const camera_options* camera_overrides, scene& s,
                      std::vector<std::string>* warnings = nullptr, const std::vector<output_file>& outputs = {});
 
+// Whether what a command itself will allocate (a picture, a photon map)
+// fits in the memory left (memory_room.h). If not, prints "error: SCENE:
+// `what` needs at least BYTES, more than the ROOM available (BOUND);
+// `advice`" and returns false.
+bool fits_in_memory(const scene& s, double bytes, const std::string& what, const std::string& advice);
+
 }  // namespace bounce

@@ -10,7 +10,6 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
-#include "base/memory_room.h"
 #include "cli/console.h"
 #include "cli/option_values.h"
 #include "cli/scene_argument.h"
@@ -231,14 +230,10 @@ int trace_scene(const scene& s, const trace_options& options) {
   const double photon_count = gathered && params.photons > 0 ? double(params.photons) : 0.0;
   const double still_bytes =
       photon_map_bytes(photon_count) + 3.0 * sizeof(float) * double(s.view.width) * s.view.height;
-  if (const memory_room room = available_memory(); still_bytes > room.bytes) {
-    std::fprintf(stderr,
-                 "error: %s: the still may need up to %s (%.0f photons, a %dx%d picture), more than the %s available "
-                 "(%s); use fewer --photons or a smaller --size\n",
-                 s.source.c_str(), format_bytes(still_bytes).c_str(), photon_count, s.view.width, s.view.height,
-                 format_bytes(room.bytes).c_str(), room.bound.c_str());
-    return exit_input_error;
-  }
+  char what[128];
+  std::snprintf(what, sizeof what, "the still, were every photon to land in a caustic (%.0f photons, a %dx%d picture),",
+                photon_count, s.view.width, s.view.height);
+  if (!fits_in_memory(s, still_bytes, what, "use fewer --photons or a smaller --size")) return exit_input_error;
 
   // First pass: the radiosity solution, whose vertices the tracer's
   // diffuse term interpolates. One-pass stills take only a constant

@@ -773,9 +773,18 @@ TEST(Cli, OutOfMemoryIsAnErrorNotAnAbort) {
   const run_result photons =
       run_env("ulimit -v 3000000;", "trace --integrator twopass --photons 50000000 --size 32x32");
   EXPECT_EQ(photons.code, 1) << photons.err;
-  EXPECT_NE(photons.err.find("the still may need up to 5.6 GB (50000000 photons, a 32x32 picture), more than the"),
+  EXPECT_NE(photons.err.find("the still, were every photon to land in a caustic (50000000 photons, a 32x32 "
+                             "picture), needs at least 5.6 GB, more than the"),
             std::string::npos)
       << photons.err;
+  // A picture of 32 million pixels at 4 samples: 1.48 GB before solving.
+  scratch_dir dir;
+  const run_result picture =
+      run_env("ulimit -v 1000000;", "render --size 16384x2048 --msaa 4 --out " + dir.path("big.png"));
+  EXPECT_EQ(picture.code, 1) << picture.err;
+  EXPECT_NE(picture.err.find("the 16384x2048 picture at 4 samples needs at least 1.48 GB, more than the"),
+            std::string::npos)
+      << picture.err;
 }
 
 // The same command gives the same picture, bit for bit, run twice and on
