@@ -163,7 +163,8 @@ TEST(Hierarchical, ATimeLimitCutsALinkRefinementShort) {
   EXPECT_GE(h.progress.refinements, 3);
   EXPECT_TRUE(solver->stats.cut_short);
   EXPECT_FALSE(solver->stats.remaining_final);
-  for (const rgb& b : make_snapshot(*solver)->radiosity)
+  const auto solution = make_snapshot(*solver);
+  for (const rgb& b : solution->radiosity)
     for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(b[c]) && b[c] >= 0.0) << b[c];
 }
 
