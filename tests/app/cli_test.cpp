@@ -793,11 +793,11 @@ TEST(Cli, OutOfMemoryIsAnErrorNotAnAbort) {
 TEST(Cli, PicturesAreBitIdenticalRunToRunAndOverThreads) {
   scratch_dir dir;
   const char* commands[] = {
-      "render --size 40x40 --until 0.1",
-      "trace --size 24x24",
+      "render --size 40x40 --until 0.1 --link-tolerance 1e-4",
+      "trace --size 24x24 --link-tolerance 1e-4",
       "trace --size 24x24 --integrator path --spp 4",
       "trace --size 24x24 --integrator twopass --photons 20000 "
-      "--gather-rays 16",
+      "--gather-rays 16 --link-tolerance 1e-4",
   };
   for (const char* command : commands) {
     std::string first;
