@@ -23,11 +23,12 @@ namespace {
 
 // The cover: the region of a plane that the pieces taken so far hold, as
 // polygons (an outer ring and its holes) in a coarse grid of their boxes.
-// A piece is clipped only against the polygons whose boxes overlap its own
-// (most pieces, surfaces that share an edge or lie apart in the plane, meet
-// none and skip Clipper), and a piece that overlaps the cover is merged
-// with the polygons it met: stacked copies of one triangle then leave one
-// polygon, not thousands that every later piece is clipped against.
+// A piece's triangles are clipped only against the polygons whose boxes
+// overlap theirs (most pieces, surfaces that share an edge or lie apart in
+// the plane, meet none and skip Clipper), and a small piece that overlaps
+// the cover is merged with the polygons it met: stacked copies of one
+// triangle then leave one polygon, not thousands that every later piece is
+// clipped against.
 class cover_set {
  public:
   // The live polygons whose boxes overlap one of `paths`' boxes by more

@@ -42,9 +42,10 @@ struct coplanar_cut_stats {
 // tolerance); within a plane, a (surface, material) piece is covered by the
 // pieces ranked above it: emitters first (an emitter keeps all its area),
 // then the piece in front (the larger offset along the common normal), then
-// the later surface. Each covered piece's triangles in that plane are
-// replaced by a triangulation of their union minus the cover (Clipper's
-// polygon difference, then ear clipping with holes bridged): vertices on
+// the later surface. A covered piece's triangles whose boxes overlap the
+// cover are replaced by a triangulation of their union minus the cover
+// (Clipper's polygon difference, then ear clipping with holes bridged;
+// the rest of the piece stays as it is): vertices on
 // the region's boundary are kept exactly, so the piece still meets its
 // other faces without T-vertices; new vertices (where the cover's outline
 // crosses) interpolate position, normal and uv from the triangle they lie
