@@ -127,6 +127,18 @@ TEST(Cli, InfoJsonOnTheCornellBox) {
   EXPECT_NEAR(j["element_size"]["hierarchical"].get<double>(), diagonal / 10.0, 1e-6 * diagonal);
   EXPECT_NEAR(j["element_size"]["progressive"].get<double>(), diagonal / 24.0, 1e-6 * diagonal);
   EXPECT_DOUBLE_EQ(j["max_edge"].get<double>(), j["element_size"]["hierarchical"].get<double>());
+  // What a solve needs: 2 kB an element over a 64 MB base, the links' limit
+  // (32 million of 16 bytes), and the room, with what bounds it.
+  const nlohmann::json& memory = j["memory"];
+  EXPECT_DOUBLE_EQ(memory["max_edge"].get<double>(), j["element_size"]["hierarchical"].get<double>());
+  EXPECT_GT(memory["elements"].get<double>(), 500.0);
+  EXPECT_DOUBLE_EQ(memory["solve_bytes"].get<double>(), 64e6 + 2000.0 * memory["elements"].get<double>());
+  EXPECT_DOUBLE_EQ(memory["link_bytes_max"].get<double>(), 512e6);
+  EXPECT_GT(memory["available_bytes"].get<double>(), 1e8);
+  EXPECT_FALSE(memory["available_bound"].get<std::string>().empty());
+  // The text says the same.
+  r = run("info " + source_path("assets/cornell_box/cornell_box.json"));
+  EXPECT_NE(r.out.find("memory:     at least 6"), std::string::npos) << r.out;
 }
 
 TEST(Cli, InfoOnEveryShippedScene) {
