@@ -37,7 +37,7 @@ TEST(Check, DebugChecksFollowTheAssertions) {
   };
 #ifdef NDEBUG
   BOUNCE_DCHECK(holds());
-  EXPECT_EQ(evaluated, 0);  // not even evaluated
+  EXPECT_EQ(evaluated, 0);         // not even evaluated
   BOUNCE_DCHECK_EQ(evaluated, 1);  // compiled, never run
 #else
   EXPECT_DEATH(BOUNCE_DCHECK(holds()), "check failed: holds\\(\\)");

@@ -3,11 +3,9 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "base/memory_room.h"
+#include "child_process.h"
 
 namespace bounce {
 namespace {
@@ -29,24 +27,14 @@ TEST(MemoryRoom, AnAddressSpaceLimitBoundsTheRoom) {
 #endif
   const memory_room machine = available_memory();
   ASSERT_GT(machine.bytes, 0.0);
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    rlimit limit{};
-    getrlimit(RLIMIT_AS, &limit);
-    limit.rlim_cur = 6'000'000'000;
-    if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(2);
+  EXPECT_TRUE(test_support::holds_under_limit(RLIMIT_AS, 6'000'000'000, [&] {
     const memory_room room = available_memory();
     // Bounded by the limit (the program maps far less than 2 GB), unless
     // the machine has less memory still.
     const bool by_limit = room.bytes <= 6e9 && room.bytes > 4e9 && room.bound.find("ulimit -v") != std::string::npos;
     const bool by_machine = machine.bytes < 4e9 && room.bytes == machine.bytes;
-    _exit(by_limit || by_machine ? 0 : 1);
-  }
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+    return by_limit || by_machine;
+  }));
 }
 
 }  // namespace

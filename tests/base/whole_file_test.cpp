@@ -4,16 +4,13 @@
 // link.
 #include "base/whole_file.h"
 
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "child_process.h"
 #include "image/image.h"
 #include "test_files.h"
 
@@ -57,22 +54,14 @@ TEST(WholeFile, AFailedWriteLeavesTheOldFileAndNothingBeside) {
 TEST(WholeFile, AFullDiskIsAnErrorWithItsReason) {
   scratch_dir dir;
   const std::string path = dir.write("big.png", "old picture");
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
+  EXPECT_TRUE(test_support::holds_under_limit(RLIMIT_FSIZE, 4096, [&] {
     std::signal(SIGXFSZ, SIG_IGN);  // writes past the limit fail with EFBIG instead
-    const rlimit limit{4096, 4096};
-    setrlimit(RLIMIT_FSIZE, &limit);
     std::vector<unsigned char> noise(512 * 512 * 3);
     for (std::size_t i = 0; i < noise.size(); ++i) noise[i] = static_cast<unsigned char>(i * 2654435761u >> 24);
     std::string error;
     const bool written = write_png(path, 512, 512, 3, noise.data(), error);
-    _exit(!written && error.find("File too large") != std::string::npos ? 0 : 1);
-  }
-  int status = 0;
-  waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << "write_png did not report the full file";
+    return !written && error.find("File too large") != std::string::npos;
+  })) << "write_png did not report the full file";
   EXPECT_EQ(read_text(path), "old picture");
   EXPECT_FALSE(leftovers(dir));
 }

@@ -2,14 +2,11 @@
 // the element count it rests on is at most what the mesher makes, so a
 // refusal never turns away a scene that would have fitted; and the solve
 // refuses, naming both figures, what does not fit.
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 
 #include <gtest/gtest.h>
 
+#include "child_process.h"
 #include "mesh_builders.h"
 #include "radiosity/memory_estimate.h"
 #include "radiosity/solve.h"
@@ -56,13 +53,7 @@ TEST(MemoryEstimate, ASolveThatCannotFitIsRefusedBeforeMeshing) {
   test_support::add_polygon(s, {{0, 0, 0}, {0, 0, 100}, {100, 0, 100}, {100, 0, 0}}, 0);
   solver_settings settings;
   settings.max_edge = 0.2;  // about a million elements over 100 x 100
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    rlimit limit{};
-    getrlimit(RLIMIT_AS, &limit);
-    limit.rlim_cur = 1'000'000'000;
-    if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(2);
+  EXPECT_TRUE(test_support::holds_under_limit(RLIMIT_AS, 1'000'000'000, [&] {
     solve_setup setup;
     std::string error;
     const bool refused = !mesh_for_solve(s, settings, setup, error) &&
@@ -71,12 +62,8 @@ TEST(MemoryEstimate, ASolveThatCannotFitIsRefusedBeforeMeshing) {
                              "each), more than the ") == 0 &&
                          error.find("use a larger --max-edge") != std::string::npos;
     if (!refused) std::fprintf(stderr, "%s\n", error.c_str());
-    _exit(refused ? 0 : 1);
-  }
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+    return refused;
+  }));
 }
 
 }  // namespace
