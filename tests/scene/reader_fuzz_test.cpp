@@ -110,6 +110,19 @@ void expect_loaded_or_refused(const std::string& path, const std::string& file_n
   }
 }
 
+// Mutants of `seed` written to `file_name` in `dir`, each loaded; random
+// stream `stream` (one per test, so each test's mutants stay the same).
+void fuzz_scene_file(const scratch_dir& dir, const std::string& seed, const std::string& file_name,
+                     std::uint64_t stream) {
+  std::mt19937_64 random(stream);
+  const bool binary = file_name.ends_with(".glb");
+  outcomes seen;
+  for (int i = 0; i < mutants_per_seed(); ++i) {
+    const std::string mutant = mutate(seed, random);
+    expect_loaded_or_refused(dir.write(file_name, mutant), file_name, binary ? "(binary)" : mutant, seen);
+  }
+}
+
 const char* seed_obj =
     "# floor, wall, lamp, a textured triangle\n"
     "mtllib m.mtl\n"
@@ -125,14 +138,9 @@ const char* seed_mtl =
     "newmtl tex\nKd 0.6 0.6 0.6\nKs 0.2 0.2 0.2\nNs 20\nillum 2\nd 0.9\nNi 1.5\n";
 
 TEST(ReaderFuzz, ObjFilesLoadOrAreRefusedByName) {
-  std::mt19937_64 random(1);
   scratch_dir dir;
   dir.write("m.mtl", seed_mtl);
-  outcomes seen;
-  for (int i = 0; i < mutants_per_seed(); ++i) {
-    const std::string mutant = mutate(seed_obj, random);
-    expect_loaded_or_refused(dir.write("fuzz.obj", mutant), "fuzz.obj", mutant, seen);
-  }
+  fuzz_scene_file(dir, seed_obj, "fuzz.obj", 1);
 }
 
 TEST(ReaderFuzz, MtlFilesLoadOrAreRefusedByName) {
@@ -175,13 +183,7 @@ TEST(ReaderFuzz, JsonScenesLoadOrAreRefusedByName) {
     {"quadric": {"a": 1, "c": 1, "k": -0.01, "box": [[-0.5, 0, -0.5], [0.5, 1, 0.5]]}, "material": "white"}
   ]
 })";
-  std::mt19937_64 random(3);
-  scratch_dir dir;
-  outcomes seen;
-  for (int i = 0; i < mutants_per_seed(); ++i) {
-    const std::string mutant = mutate(seed, random);
-    expect_loaded_or_refused(dir.write("fuzz.json", mutant), "fuzz.json", mutant, seen);
-  }
+  fuzz_scene_file(scratch_dir(), seed, "fuzz.json", 3);
 }
 
 // A lit quad with a material and a point light, as a glTF document.
@@ -205,25 +207,11 @@ test_support::gltf_file seed_gltf() {
 }
 
 TEST(ReaderFuzz, GltfFilesLoadOrAreRefusedByName) {
-  const std::string seed = seed_gltf().gltf_text();
-  std::mt19937_64 random(4);
-  scratch_dir dir;
-  outcomes seen;
-  for (int i = 0; i < mutants_per_seed(); ++i) {
-    const std::string mutant = mutate(seed, random);
-    expect_loaded_or_refused(dir.write("fuzz.gltf", mutant), "fuzz.gltf", mutant, seen);
-  }
+  fuzz_scene_file(scratch_dir(), seed_gltf().gltf_text(), "fuzz.gltf", 4);
 }
 
 TEST(ReaderFuzz, GlbFilesLoadOrAreRefusedByName) {
-  const std::string seed = seed_gltf().glb();
-  std::mt19937_64 random(5);
-  scratch_dir dir;
-  outcomes seen;
-  for (int i = 0; i < mutants_per_seed(); ++i) {
-    const std::string mutant = mutate(seed, random);
-    expect_loaded_or_refused(dir.write("fuzz.glb", mutant), "fuzz.glb", "(binary)", seen);
-  }
+  fuzz_scene_file(scratch_dir(), seed_gltf().glb(), "fuzz.glb", 5);
 }
 
 TEST(ReaderFuzz, PfmFilesReadOrAreRefusedByName) {
